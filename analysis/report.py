@@ -1,0 +1,242 @@
+"""Reading rollbench reports (FORMATS.md, "Report (JSON)").
+
+load() checks the schema string and the keys the analysis relies on, and
+says which key is missing where; every other key is optional, and sections
+(orders, stability, references) may be missing or empty. The accessors
+below turn the report's nulls into NaN so that the figures and tables can
+treat "not measured" uniformly.
+"""
+import json
+import math
+
+import numpy as np
+
+SCHEMA = "rollbench.report/1"
+COMPONENTS = ("contact", "centre", "omega", "rotation")
+
+# keys without which an entry of a section means nothing
+REQUIRED = {
+    "runs": ("scene", "integrator", "family", "adaptive", "status"),
+    "orders": ("scene", "integrator"),
+    "references": ("scene",),
+    "stability.drift": ("scene", "integrator", "t"),
+    "stability.largest_stable_h": ("scene", "integrator"),
+}
+
+
+class ReportError(ValueError):
+    """A file that is not a usable report; the message names the key."""
+
+
+def load(path):
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+    except OSError as e:
+        raise ReportError(f"cannot read the report '{path}': {e.strerror}") from None
+    except json.JSONDecodeError as e:
+        raise ReportError(f"'{path}' is not JSON: {e}") from None
+    return validate(data, str(path))
+
+
+def validate(data, name="report"):
+    """The report itself, once it has passed the checks; raises ReportError."""
+    if not isinstance(data, dict):
+        raise ReportError(f"{name}: a report is a JSON object, not {type(data).__name__}")
+    if "schema" not in data:
+        raise ReportError(f"{name}: missing key 'schema' (expected \"{SCHEMA}\")")
+    if data["schema"] != SCHEMA:
+        raise ReportError(f"{name}: key 'schema' is {data['schema']!r}, this analysis reads \"{SCHEMA}\"")
+    for section, keys in REQUIRED.items():
+        entries = section_entries(data, section, name)
+        for i, entry in enumerate(entries):
+            if not isinstance(entry, dict):
+                raise ReportError(f"{name}: {section}[{i}] is not an object")
+            for key in keys:
+                if key not in entry:
+                    raise ReportError(f"{name}: {section}[{i}] has no key '{key}'")
+    for i, run in enumerate(data.get("runs") or []):
+        if not run["adaptive"] and run.get("h") is None and run["status"] == "ok":
+            raise ReportError(f"{name}: runs[{i}] is a fixed-step run with no key 'h'")
+    return data
+
+
+def section_entries(data, section, name="report"):
+    """The list at a dotted path ('stability.drift'), [] when it is absent or null."""
+    node = data
+    for part in section.split("."):
+        if node is None:
+            return []
+        if not isinstance(node, dict):
+            raise ReportError(f"{name}: '{section}' is not inside an object")
+        node = node.get(part)
+    if node is None:
+        return []
+    if not isinstance(node, list):
+        raise ReportError(f"{name}: key '{section}' is not a list")
+    return node
+
+
+def num(value):
+    """A float, NaN for null or anything that is not a number."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return math.nan
+    return float(value)
+
+
+def unique(items):
+    """Items in order of first appearance."""
+    seen, out = set(), []
+    for item in items:
+        if item not in seen:
+            seen.add(item)
+            out.append(item)
+    return out
+
+
+# -- sections ------------------------------------------------------------------
+
+def runs(report, scene=None, adaptive=None):
+    out = section_entries(report, "runs")
+    if scene is not None:
+        out = [r for r in out if r["scene"] == scene]
+    if adaptive is not None:
+        out = [r for r in out if bool(r["adaptive"]) == adaptive]
+    return out
+
+
+def drift_runs(report, scene=None):
+    out = section_entries(report, "stability.drift")
+    return [d for d in out if scene is None or d["scene"] == scene]
+
+
+def stable_steps(report):
+    return section_entries(report, "stability.largest_stable_h")
+
+
+def scenes(report):
+    """Every scene the report mentions, in order of first appearance."""
+    names = [r["scene"] for r in runs(report)]
+    names += [d["scene"] for d in drift_runs(report)]
+    names += [s["scene"] for s in stable_steps(report)]
+    return unique(names)
+
+
+def integrators(entries):
+    """Integrator names of some runs, in order of first appearance."""
+    return unique(e["integrator"] for e in entries)
+
+
+def families(report):
+    """{integrator: family} over every section."""
+    out = {}
+    for entry in runs(report) + drift_runs(report) + stable_steps(report):
+        out.setdefault(entry["integrator"], entry.get("family"))
+    return out
+
+
+def reference(report, scene):
+    for ref in section_entries(report, "references"):
+        if ref["scene"] == scene:
+            return ref
+    return None
+
+
+def floor(report, scene):
+    """The reference's own error for a scene (0 when unknown): errors below it are not measured."""
+    ref = reference(report, scene)
+    value = num(ref.get("error")) if ref else math.nan
+    if not math.isfinite(value):
+        floors = [num((r.get("error") or {}).get("floor")) for r in runs(report, scene)]
+        floors = [f for f in floors if math.isfinite(f)]
+        value = max(floors) if floors else 0.0
+    return value
+
+
+def error(run, component="contact"):
+    return num((run.get("error") or {}).get(component))
+
+
+def below_floor(run, component="contact"):
+    return component in ((run.get("error") or {}).get("below_floor") or [])
+
+
+def wall(run):
+    return num((run.get("wall_s") or {}).get("median"))
+
+
+def samples(run):
+    raw = (run.get("wall_s") or {}).get("samples") or []
+    return np.array([num(s) for s in raw if math.isfinite(num(s))], dtype=float)
+
+
+def ok(run):
+    return run.get("status") == "ok"
+
+
+def tolerance(run):
+    return num(run.get("rtol"))
+
+
+def setting(run, digits=6):
+    """The run's step size or tolerances, as text (its place in a sweep)."""
+    if run.get("adaptive"):
+        rtol, atol = num(run.get("rtol")), num(run.get("atol"))
+        if math.isfinite(atol) and atol != rtol:
+            return f"rtol={rtol:.{digits}g} atol={atol:.{digits}g}"
+        return f"tol={rtol:.{digits}g}"
+    return f"h={num(run.get('h')):.{digits}g}"
+
+
+# -- orders --------------------------------------------------------------------
+
+def fit_order(h, e, floor_value=0.0):
+    """Least-squares slope of log e against log h over the points above 10 * floor.
+
+    For reports without an "orders" section; the runner's fit also trims the
+    pre-asymptotic end. Returns (slope, points), slope NaN with fewer than 3 points.
+    """
+    h, e = np.asarray(h, float), np.asarray(e, float)
+    keep = np.isfinite(h) & np.isfinite(e) & (h > 0) & (e > 10 * floor_value) & (e > 0)
+    if keep.sum() < 3:
+        return math.nan, int(keep.sum())
+    slope = np.polyfit(np.log(h[keep]), np.log(e[keep]), 1)[0]
+    return float(slope), int(keep.sum())
+
+
+def orders(report):
+    """Entries of "orders", or fitted here from the fixed-step runs when the section is absent.
+
+    Fitted entries carry "fitted_here": True.
+    """
+    given = section_entries(report, "orders")
+    if given:
+        return given
+    out = []
+    for scene in scenes(report):
+        fixed = runs(report, scene, adaptive=False)
+        for name in integrators(fixed):
+            group = [r for r in fixed if r["integrator"] == name and ok(r)]
+            first = next(r for r in fixed if r["integrator"] == name)
+            observed = {}
+            for c in COMPONENTS:
+                slope, _ = fit_order([num(r.get("h")) for r in group], [error(r, c) for r in group],
+                                     floor(report, scene))
+                observed[c] = None if math.isnan(slope) else slope
+            out.append({"scene": scene, "integrator": name, "declared": first.get("declared_order"),
+                        "declared_rotation": first.get("declared_rotation_order", first.get("declared_order")),
+                        "observed": observed, "fitted_here": True})
+    return out
+
+
+def order_of(report, scene, integrator):
+    for o in orders(report):
+        if o["scene"] == scene and o["integrator"] == integrator:
+            return o
+    return None
+
+
+def observed(order, component):
+    if not order:
+        return math.nan
+    return num((order.get("observed") or {}).get(component))

@@ -1,0 +1,82 @@
+#include "bench/lib/presets.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "problems/input_error.hpp"
+
+namespace rb {
+
+namespace {
+
+std::vector<double> powers_of_two(int from, int to) {
+  std::vector<double> v;
+  for (int k = from; k <= to; ++k) v.push_back(std::ldexp(1.0, -k));
+  return v;
+}
+
+}  // namespace
+
+SweepSpec preset(const std::string& name) {
+  SweepSpec s;
+  s.preset = name;
+  if (name == "quick") {
+    // CI: a handful of methods, two scenes, short runs
+    s.scenes = {"valley-sideways", "bowl-planar"};
+    s.integrators = {"euler", "exp-euler", "rk4", "rkmk4", "rkmk4-seminar", "odeint-rk4", "gsl-rk4",
+                     "odeint-dopri5-adaptive", "gsl-rkf45-adaptive"};
+    s.hs = powers_of_two(4, 9);
+    s.tols = {1e-4, 1e-6, 1e-8, 1e-10};
+    s.t_end = 2.0;
+    s.repeats = 2;
+    s.repeat_budget_s = 0.2;
+  } else if (name == "default") {
+    // the README's main job: everything registered on every shipped scene
+    s.hs = powers_of_two(2, 10);
+    s.tols = {1e-3, 1e-5, 1e-7, 1e-9, 1e-11};
+    s.repeats = 3;
+    s.repeat_budget_s = 0.3;
+    s.stability.enabled = true;
+    s.stability.scenes = {"bowl-3d", "bumpy-long"};
+    s.stability.integrators = {"euler", "exp-euler", "rk4", "rkmk4", "odeint-rk4", "gsl-rk4"};
+  } else if (name == "full") {
+    // a study: finer steps, more repeats, longer drift runs (10^6 steps)
+    s.hs = powers_of_two(1, 13);
+    s.tols = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
+    s.repeats = 7;
+    s.repeat_budget_s = 2.0;
+    s.stability.enabled = true;
+    s.stability.scenes = {"bowl-3d", "bumpy-long"};
+    s.stability.integrators = {"euler", "exp-euler", "heun", "rkmk2", "rk4", "rkmk4", "odeint-rk4", "gsl-rk4"};
+    s.stability.drift_t_end = 10000.0;
+  } else {
+    throw InputError("unknown preset '" + name + "' (quick, default or full)", "preset");
+  }
+  return s;
+}
+
+std::vector<double> parse_number_list(const std::string& text, const std::string& key) {
+  std::vector<double> values;
+  const auto range = text.find("..");
+  if (range != std::string::npos) {
+    // 2^-a..2^-b
+    int a = 0, b = 0;
+    if (std::sscanf(text.c_str(), "2^-%d..2^-%d", &a, &b) != 2 || a > b || a < -60 || b > 60)
+      throw InputError("expected a range like 2^-3..2^-8, got '" + text + "'", key);
+    return powers_of_two(a, b);
+  }
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v) || v <= 0.0)
+      throw InputError("expected positive numbers separated by commas, got '" + item + "'", key);
+    values.push_back(v);
+  }
+  if (values.empty()) throw InputError("the list is empty", key);
+  return values;
+}
+
+}  // namespace rb

@@ -1,0 +1,49 @@
+#pragma once
+// What a sweep runs: scenes x integrators x step sizes or tolerances, and the
+// named presets (quick for CI, default for the README's main job, full for a
+// study). All defaults of the runner live here.
+#include <string>
+#include <vector>
+
+namespace rb {
+
+struct StabilitySpec {
+  bool enabled = false;
+  std::vector<std::string> scenes;       // bounded scenes for long runs
+  std::vector<std::string> integrators;  // methods for the long drift runs
+  double drift_h = 0.01;                 // step of the long runs
+  double drift_t_end = 1000.0;           // 10^5 steps at h = 0.01
+  int drift_samples = 40;                // log-spaced output times
+  // largest stable step: h = h_max, h_max / 2, ... while the run fails
+  double search_h_max = 0.5;
+  double search_h_min = 1.0 / 1024.0;
+  double search_t_end = 10.0;
+  double contact_threshold = 1e-2;  // |alpha - alpha_ref| at the end
+  double energy_threshold = 1e-2;   // max |H - H0| / (m g0 r) over the run
+};
+
+struct SweepSpec {
+  std::string preset = "custom";
+  std::vector<std::string> scenes;       // shipped names or JSON paths; empty: all shipped
+  std::vector<std::string> integrators;  // registry names; empty: all registered
+  std::vector<double> hs;                // step sizes of fixed-step methods
+  std::vector<double> tols;              // rtol = atol of adaptive methods
+  double t_end = 0.0;                    // 0: each scene's own t_end
+  double dt_out = 0.25;                  // spacing of recorded outputs (drift is sampled there)
+  int repeats = 3;                       // timed repeats per run (serial, one thread)
+  double repeat_budget_s = 1.0;          // stop repeating a run once its samples took this long
+  int jobs = 2;                          // threads for the accuracy runs
+  int shard_index = 0, shard_count = 1;  // this process runs the runs with index % count == index
+  long max_steps = 5'000'000;
+  StabilitySpec stability;
+  std::string cache_dir;                 // reference cache; empty: none
+};
+
+// The named preset; throws InputError (key "preset") for an unknown name.
+SweepSpec preset(const std::string& name);
+
+// "1e-3,1e-4" or "2^-3..2^-8" (powers of two, inclusive) -> numbers; throws
+// InputError naming the key on bad text.
+std::vector<double> parse_number_list(const std::string& text, const std::string& key);
+
+}  // namespace rb

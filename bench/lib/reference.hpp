@@ -1,0 +1,65 @@
+#pragma once
+// Reference solutions: what every run's error is measured against.
+//
+// Every scene gets a computed reference: a high-accuracy solution from one
+// method, cross-checked by a second, different one; their largest
+// disagreement is the reference's own error (its floor: an error below it is
+// not a measurement). Where the scene has a closed form, the exact solution
+// replaces the computed one for every component it knows, and the computed
+// one checks it. References are cached on disk, keyed by the scene file's
+// content, the output grid and the code version.
+#include <string>
+#include <vector>
+
+#include "integrators/integrator.hpp"
+
+namespace rb {
+
+// The state of the reference at one output time, in the components errors
+// are measured in.
+struct ReferencePoint {
+  Vec2 alpha;
+  Vec3 centre;
+  Vec3 omega;
+  Mat3 R;
+};
+
+struct Reference {
+  std::string scene;
+  std::string kind;         // "exact", "computed", or "none" when a reference method failed
+  std::string method;       // e.g. "rkmk4 h=0.000244140625" or "exact plane"
+  std::string cross_check;  // the second method
+  double error = 0.0;       // largest disagreement, contact/centre/omega/rotation
+  bool exact_rotation = true;  // false: the rotation comes from the computed solution
+  std::vector<double> t;
+  std::vector<ReferencePoint> points;
+  std::string message;      // why there is no reference ("none")
+  bool from_cache = false;
+};
+
+// Which methods and settings make references: defaults in one place.
+struct ReferenceSettings {
+  std::string primary = "rkmk4";
+  std::string cross_check = "rk38";
+  double h = 1.0 / 16384.0;  // the primary's step; the cross-check takes h / 2
+  std::string cache_dir;    // empty: no caching
+};
+
+// The reference of a problem on an output grid (increasing, ending at the
+// problem's t_end). When a reference method fails on the scene (a scene
+// built to fail), the reference has kind "none", no points, and says why:
+// the scene's runs are still made and recorded, without errors.
+// scene_content: the scene file's text (the cache key).
+Reference make_reference(const Problem& problem, const std::string& scene_content, const std::vector<double>& times,
+                         const ReferenceSettings& settings);
+
+// The reference point of a state (derived quantities of the model).
+ReferencePoint reference_point_of(const Problem& problem, const FlatState& y);
+
+// Largest disagreement of two points over the four components.
+double point_distance(const ReferencePoint& a, const ReferencePoint& b);
+
+// The commit of the source tree, or "unknown".
+std::string code_version();
+
+}  // namespace rb

@@ -1,0 +1,295 @@
+#include "bench/lib/report.hpp"
+
+#include <sys/utsname.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <boost/version.hpp>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <gsl/gsl_version.h>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "bench/lib/order_fit.hpp"
+#include "problems/input_error.hpp"
+
+namespace rb {
+
+using json = nlohmann::json;
+
+namespace {
+
+// NaN is "not measured": null in JSON.
+json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+double median(std::vector<double> v) {
+  if (v.empty()) return kNaN;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::string first_line_of(const std::string& path, const std::string& prefix) {
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind(prefix, 0) == 0) {
+      const auto colon = line.find(':');
+      return colon == std::string::npos ? line : line.substr(colon + 2);
+    }
+  return "unknown";
+}
+
+json machine() {
+  utsname u{};
+  uname(&u);
+  std::ifstream loadavg("/proc/loadavg");
+  double l1 = kNaN, l5 = kNaN, l15 = kNaN;
+  loadavg >> l1 >> l5 >> l15;
+  return {{"cpu", first_line_of("/proc/cpuinfo", "model name")},
+          {"cores", std::thread::hardware_concurrency()},
+          {"os", std::string(u.sysname) + " " + u.release + " " + u.machine},
+          {"load", {number(l1), number(l5), number(l15)}}};
+}
+
+json build() {
+  return {{"compiler", std::string("g++ ") + __VERSION__},
+          {"flags", RB_BUILD_FLAGS},
+          {"type", RB_BUILD_TYPE},
+          {"libraries",
+           {{"boost", BOOST_LIB_VERSION},
+            {"gsl", GSL_VERSION},
+            {"eigen", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
+                          std::to_string(EIGEN_MINOR_VERSION)},
+            {"nlohmann_json", std::to_string(NLOHMANN_JSON_VERSION_MAJOR) + "." +
+                                  std::to_string(NLOHMANN_JSON_VERSION_MINOR) + "." +
+                                  std::to_string(NLOHMANN_JSON_VERSION_PATCH)}}}};
+}
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buffer[32];
+  std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buffer;
+}
+
+json options_of(const SweepSpec& s) {
+  const StabilitySpec& st = s.stability;
+  return {{"preset", s.preset}, {"scenes", s.scenes}, {"integrators", s.integrators}, {"h", s.hs}, {"tol", s.tols},
+          {"t_end", number(s.t_end > 0 ? s.t_end : kNaN)}, {"dt_out", s.dt_out}, {"repeats", s.repeats},
+          {"repeat_budget_s", s.repeat_budget_s}, {"jobs", s.jobs}, {"max_steps", s.max_steps},
+          {"stability",
+           {{"enabled", st.enabled}, {"scenes", st.scenes}, {"integrators", st.integrators}, {"drift_h", st.drift_h},
+            {"drift_t_end", st.drift_t_end}, {"search_h_max", st.search_h_max}, {"search_h_min", st.search_h_min},
+            {"search_t_end", st.search_t_end}, {"contact_threshold", st.contact_threshold},
+            {"energy_threshold", st.energy_threshold}}}};
+}
+
+json run_json(const RunRecord& r, const std::string& reference_kind) {
+  std::vector<double> samples = r.wall_samples;
+  const Mat3 R = rotation_of(r.final_state);
+  return {{"index", r.index}, {"scene", r.scene}, {"integrator", r.integrator}, {"family", r.family},
+          {"declared_order", r.declared_order}, {"declared_rotation_order", r.rotation_order},
+          {"adaptive", r.adaptive}, {"needs_jacobian", r.needs_jacobian},
+          {"h", number(r.h)}, {"rtol", number(r.rtol)}, {"atol", number(r.atol)},
+          {"status", std::string(status_name(r.status))}, {"message", r.message}, {"stop_time", r.stop_time},
+          {"steps", r.cost.steps}, {"rejected", r.cost.rejected}, {"rhs_evals", r.cost.rhs_evals},
+          {"jacobian_evals", r.cost.jacobian_evals}, {"exp_evals", r.cost.exp_evals},
+          {"dexpinv_evals", r.cost.dexpinv_evals},
+          {"wall_s",
+           {{"median", number(median(samples))},
+            {"min", number(samples.empty() ? kNaN : *std::min_element(samples.begin(), samples.end()))},
+            {"max", number(samples.empty() ? kNaN : *std::max_element(samples.begin(), samples.end()))},
+            {"repeats", samples.size()}, {"samples", samples}}},
+          {"error",
+           {{"reference", reference_kind}, {"contact", number(r.error.contact)}, {"centre", number(r.error.centre)},
+            {"omega", number(r.error.omega)}, {"rotation", number(r.error.rotation)}, {"floor", r.error.floor},
+            {"below_floor", r.error.below_floor}}},
+          {"scd", number(r.error.scd)},
+          {"drift", {{"energy", number(r.energy_drift)}, {"rotation_defect", number(r.rotation_drift)}}},
+          {"final",
+           {{"t", r.stop_time},
+            {"contact", {r.final_state[kOffsetAlpha], r.final_state[kOffsetAlpha + 1]}},
+            {"R", {{R(0, 0), R(0, 1), R(0, 2)}, {R(1, 0), R(1, 1), R(1, 2)}, {R(2, 0), R(2, 1), R(2, 2)}}}}}};
+}
+
+json stability_json(const StabilityResults& s) {
+  json drift = json::array(), stable = json::array();
+  for (const DriftRecord& d : s.drift)
+    drift.push_back({{"index", d.index}, {"scene", d.scene}, {"integrator", d.integrator}, {"family", d.family},
+                     {"h", d.h}, {"status", std::string(status_name(d.status))}, {"message", d.message},
+                     {"stop_time", d.stop_time}, {"t", d.t}, {"energy_error", d.energy_error},
+                     {"rotation_defect", d.rotation_defect}, {"steps", d.cost.steps},
+                     {"rhs_evals", d.cost.rhs_evals}, {"wall_s", d.wall_s}});
+  for (const StableStepRecord& r : s.largest_stable_h) {
+    json tried = json::array();
+    for (const StableStepTry& t : r.tried)
+      tried.push_back({{"h", t.h}, {"status", std::string(status_name(t.status))},
+                       {"contact_error", number(t.contact_error)}, {"energy_error", number(t.energy_error)}});
+    stable.push_back({{"index", r.index}, {"scene", r.scene}, {"integrator", r.integrator}, {"family", r.family},
+                      {"h", number(r.h)},
+                      {"thresholds", {{"contact", r.contact_threshold}, {"energy", r.energy_threshold}}},
+                      {"tried", tried}});
+  }
+  return {{"drift", drift}, {"largest_stable_h", stable}};
+}
+
+double as_number(const json& j) { return j.is_number() ? j.get<double>() : kNaN; }
+
+}  // namespace
+
+json fit_orders(const json& runs, const json& references) {
+  std::map<std::string, double> floors;
+  for (const json& r : references) floors[r.at("scene").get<std::string>()] = r.at("error").get<double>();
+  // (scene, integrator) in order of first appearance
+  std::vector<std::pair<std::string, std::string>> keys;
+  std::map<std::pair<std::string, std::string>, std::vector<const json*>> groups;
+  for (const json& r : runs) {
+    if (r.at("adaptive").get<bool>()) continue;
+    const auto key = std::make_pair(r.at("scene").get<std::string>(), r.at("integrator").get<std::string>());
+    if (!groups.count(key)) keys.push_back(key);
+    groups[key].push_back(&r);
+  }
+  json orders = json::array();
+  const char* components[] = {"contact", "centre", "omega", "rotation"};
+  for (const auto& key : keys) {
+    const std::vector<const json*>& group = groups[key];
+    const json& first = *group.front();
+    json observed, ci95, fits;
+    bool any = false, pass = true;
+    for (const char* c : components) {
+      std::vector<double> h, e;
+      for (const json* r : group) {
+        h.push_back(as_number(r->at("h")));
+        e.push_back(as_number(r->at("error").at(c)));
+      }
+      const OrderFit fit = fit_order(h, e, floors.count(key.first) ? floors[key.first] : 0.0);
+      if (fit.points >= 3) {
+        observed[c] = fit.slope;
+        ci95[c] = fit.slope_ci95;
+        fits[c] = {{"h_min", fit.h_min}, {"h_max", fit.h_max}, {"points", fit.points}, {"r2", fit.r2}};
+        const int declared = std::string(c) == "rotation" ? first.at("declared_rotation_order").get<int>()
+                                                          : first.at("declared_order").get<int>();
+        any = true;
+        pass = pass && std::abs(fit.slope - declared) <= 0.2;
+      } else {
+        observed[c] = nullptr;
+        ci95[c] = nullptr;
+        fits[c] = {{"points", std::max(0, fit.points)}};
+      }
+    }
+    orders.push_back({{"scene", key.first}, {"integrator", key.second}, {"declared", first.at("declared_order")},
+                      {"declared_rotation", first.at("declared_rotation_order")}, {"observed", observed},
+                      {"ci95", ci95}, {"fit", fits["contact"]}, {"fits", fits},
+                      {"pass", any ? json(pass) : json(nullptr)}});
+  }
+  return orders;
+}
+
+json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes, const std::vector<RunRecord>& runs,
+                 const StabilityResults& stability) {
+  json references = json::array();
+  for (const SweepScene& s : scenes)
+    references.push_back({{"scene", s.scene.name}, {"kind", s.reference.kind}, {"method", s.reference.method},
+                          {"cross_check", s.reference.cross_check}, {"error", s.reference.error},
+                          {"exact_rotation", s.reference.exact_rotation}, {"t_end", s.scene.t_end},
+                          {"message", s.reference.message}});
+  std::map<std::string, std::string> kind;
+  for (const SweepScene& s : scenes) kind[s.scene.name] = s.reference.kind;
+  json run_list = json::array();
+  for (const RunRecord& r : runs) run_list.push_back(run_json(r, kind[r.scene]));
+  json options = options_of(spec);
+  options["shard"] = {spec.shard_index, spec.shard_count};
+  return {{"schema", kReportSchema}, {"created", utc_now()}, {"git", code_version()}, {"machine", machine()},
+          {"build", build()}, {"preset", spec.preset}, {"options", options}, {"references", references},
+          {"runs", run_list}, {"orders", fit_orders(run_list, references)}, {"stability", stability_json(stability)}};
+}
+
+json read_report(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError("cannot read the report '" + path + "'", "report");
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw InputError("'" + path + "' is not JSON: " + e.what(), "report");
+  }
+  if (!j.is_object() || !j.contains("schema") || j["schema"] != kReportSchema)
+    throw InputError("'" + path + "' is not a " + std::string(kReportSchema) + " report", "schema");
+  return j;
+}
+
+json merge_reports(const std::vector<json>& shards) {
+  if (shards.empty()) throw InputError("nothing to merge", "reports");
+  json merged = shards.front();
+  json base_options = merged.at("options");
+  base_options.erase("shard");
+  json runs = json::array(), drift = json::array(), stable = json::array(), references = json::array();
+  for (const json& s : shards) {
+    json options = s.at("options");
+    options.erase("shard");
+    if (options != base_options) throw InputError("the reports come from different sweeps (their options differ)", "reports");
+    for (const json& r : s.at("runs")) runs.push_back(r);
+    for (const json& d : s.at("stability").at("drift")) drift.push_back(d);
+    for (const json& d : s.at("stability").at("largest_stable_h")) stable.push_back(d);
+    for (const json& r : s.at("references"))
+      if (std::none_of(references.begin(), references.end(), [&](const json& x) { return x["scene"] == r["scene"]; }))
+        references.push_back(r);
+  }
+  auto by_index = [](const json& a, const json& b) { return a.at("index").get<long>() < b.at("index").get<long>(); };
+  std::sort(runs.begin(), runs.end(), by_index);
+  std::sort(drift.begin(), drift.end(), by_index);
+  std::sort(stable.begin(), stable.end(), by_index);
+  // references in the order their scenes first appear in the sweep
+  json ordered_refs = json::array();
+  for (const json& r : runs)
+    for (const json& ref : references)
+      if (ref["scene"] == r["scene"] &&
+          std::none_of(ordered_refs.begin(), ordered_refs.end(), [&](const json& x) { return x["scene"] == ref["scene"]; }))
+        ordered_refs.push_back(ref);
+  merged["options"] = base_options;
+  merged["options"]["shard"] = {0, 1};
+  merged["references"] = ordered_refs;
+  merged["runs"] = runs;
+  merged["stability"] = {{"drift", drift}, {"largest_stable_h", stable}};
+  merged["orders"] = fit_orders(runs, ordered_refs);
+  return merged;
+}
+
+std::string summary_table(const json& report) {
+  std::ostringstream out;
+  char line[256];
+  std::snprintf(line, sizeof line, "%-16s %-28s %9s %9s %10s %10s %s\n", "scene", "integrator", "order", "declared",
+                "best err", "its time", "failures");
+  out << line;
+  std::map<std::pair<std::string, std::string>, json> order_of;
+  for (const json& o : report.at("orders"))
+    order_of[{o.at("scene").get<std::string>(), o.at("integrator").get<std::string>()}] = o;
+  std::vector<std::pair<std::string, std::string>> seen;
+  for (const json& r : report.at("runs")) {
+    const auto key = std::make_pair(r.at("scene").get<std::string>(), r.at("integrator").get<std::string>());
+    if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
+    seen.push_back(key);
+    double best = kNaN, best_time = kNaN;
+    int failures = 0;
+    for (const json& x : report.at("runs")) {
+      if (x.at("scene") != key.first || x.at("integrator") != key.second) continue;
+      if (x.at("status") != "ok") ++failures;
+      const double e = as_number(x.at("error").at("contact"));
+      if (std::isfinite(e) && !(e >= best)) best = e, best_time = as_number(x.at("wall_s").at("median"));
+    }
+    const double observed = order_of.count(key) ? as_number(order_of[key].at("observed").at("contact")) : kNaN;
+    std::snprintf(line, sizeof line, "%-16s %-28s %9.2f %9d %10.2e %10.2e %d\n", key.first.c_str(), key.second.c_str(),
+                  observed, r.at("declared_order").get<int>(), best, best_time, failures);
+    out << line;
+  }
+  return out.str();
+}
+
+}  // namespace rb

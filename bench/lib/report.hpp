@@ -1,0 +1,37 @@
+#pragma once
+// The JSON report of FORMATS.md ("rollbench.report/1"): provenance, the runs,
+// the observed orders, the references and the stability study; and merging
+// the reports of shards back into one.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "bench/lib/stability.hpp"
+#include "bench/lib/sweep.hpp"
+
+namespace rb {
+
+inline constexpr const char* kReportSchema = "rollbench.report/1";
+
+// The report of a sweep. Orders are fitted here, from the fixed-step runs.
+nlohmann::json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes,
+                           const std::vector<RunRecord>& runs, const StabilityResults& stability);
+
+// The "orders" entries for the runs of a report: per (scene, integrator) of a
+// fixed-step method, the slope of log error on log h per component.
+nlohmann::json fit_orders(const nlohmann::json& runs, const nlohmann::json& references);
+
+// Joins shard reports: runs, references and stability records in sweep
+// order, orders refitted. Throws InputError for reports of another schema or
+// of different sweeps.
+nlohmann::json merge_reports(const std::vector<nlohmann::json>& shards);
+
+// Reads a report and checks its schema string; throws InputError naming the
+// file.
+nlohmann::json read_report(const std::string& path);
+
+// A short text table of a report: per scene and integrator, the observed
+// order, the smallest error and its time, and failures.
+std::string summary_table(const nlohmann::json& report);
+
+}  // namespace rb

@@ -1,0 +1,209 @@
+// rollbench: the command-line front end. Library code throws; this file
+// turns errors into messages and exit codes (0 ok, 2 bad input, 3 a run that
+// stopped early).
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "bench/lib/report.hpp"
+#include "bench/lib/trajectory_csv.hpp"
+#include "integrators/registry.hpp"
+#include "problems/input_error.hpp"
+#include "problems/scene.hpp"
+
+namespace {
+
+int run_list() {
+  std::printf("integrators (name, family, declared order, adaptive):\n");
+  for (const auto& integrator : rb::registry())
+    std::printf("  %-28s %-8s %2d  %-8s %s\n", integrator->name().c_str(), integrator->family().c_str(),
+                integrator->declared_order(), integrator->adaptive() ? "adaptive" : "fixed",
+                integrator->description().c_str());
+  std::printf("\nscenes (in %s):\n", RB_SCENE_DIR);
+  for (const std::string& name : rb::shipped_scene_names()) {
+    const rb::Scene scene = rb::load_scene(name);
+    std::printf("  %-18s %s\n", name.c_str(), scene.description.c_str());
+  }
+  return 0;
+}
+
+struct TrajectoryArgs {
+  std::string scene, integrator, out;
+  double h = 0.0, rtol = 0.0, atol = 0.0, dt_out = 0.0, t_end = 0.0;  // dt_out 0: the default
+};
+
+int run_trajectory(const TrajectoryArgs& a) {
+  const rb::Scene scene = rb::load_scene(a.scene);
+  const rb::Problem problem = rb::make_problem(scene);
+  const rb::Integrator& integrator = rb::find_integrator(a.integrator);
+  rb::RunOptions options;
+  options.t_end = a.t_end > 0.0 ? a.t_end : problem.t_end();
+  options.h = a.h;
+  options.rtol = a.rtol;
+  options.atol = a.atol;
+  if (!integrator.adaptive() && !(a.h > 0.0))
+    throw rb::InputError("'" + integrator.name() + "' is a fixed-step method and needs --h > 0", "h");
+  if (integrator.adaptive() && !(a.rtol > 0.0 || a.atol > 0.0))
+    throw rb::InputError("'" + integrator.name() + "' is adaptive and needs --rtol or --atol > 0", "rtol");
+  // a fixed-step method lands on every output, so outputs closer than h
+  // would silently shorten its step: that is refused, not done
+  if (!integrator.adaptive() && a.dt_out > 0.0 && a.dt_out < a.h)
+    throw rb::InputError("the output spacing must not be smaller than the step h = " + std::to_string(a.h), "dt-out");
+  const double dt_out = a.dt_out > 0.0 ? a.dt_out : std::max(0.01, a.h);
+  options.output_times = rb::equally_spaced_outputs(dt_out, options.t_end);
+
+  std::ofstream out(a.out);
+  if (!out) throw rb::InputError("cannot open '" + a.out + "' for writing", "out");
+  const rb::RunResult run = integrator.integrate(problem, options);
+  rb::write_trajectory_csv(out, problem, run.output);
+  out.close();
+  if (!out) throw rb::InputError("could not write '" + a.out + "'", "out");
+
+  // a summary on standard output: how the run went and what it cost
+  const rb::Derived start = problem.model().derived(problem.y0());
+  double energy_error = 0.0, defect = 0.0;
+  for (const rb::FlatState& y : run.output.y) {
+    const rb::Derived d = problem.model().derived(y);
+    energy_error = std::max(energy_error, std::abs(d.energy - start.energy));
+    defect = std::max(defect, d.rotation_defect);
+  }
+  std::printf("%s on %s: %s at t = %.6g (%zu rows in %s)\n", integrator.name().c_str(), scene.name.c_str(),
+              std::string(rb::status_name(run.status)).c_str(), run.stop_time, run.output.t.size() + 1,
+              a.out.c_str());
+  std::printf("  steps %ld, rejected %ld, rhs evals %ld\n", run.cost.steps, run.cost.rejected, run.cost.rhs_evals);
+  std::printf("  max |energy error| %.3e, max rotation defect %.3e\n", energy_error, defect);
+  if (run.status != rb::Status::ok) {
+    std::fprintf(stderr, "rollbench: run stopped early at t = %.17g: %s: %s\n", run.stop_time,
+                 std::string(rb::status_name(run.status)).c_str(), run.message.c_str());
+  }
+  return rb::exit_code_of(run.status);
+}
+
+struct RunArgs {
+  std::string preset = "default", scenes, integrators, hs, tols, out, shard, cache;
+  int repeats = -1, jobs = -1;
+  bool no_stability = false;
+};
+
+std::vector<std::string> split_names(const std::string& text) {
+  std::vector<std::string> names;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ','))
+    if (!item.empty()) names.push_back(item);
+  return names;
+}
+
+void write_json(const nlohmann::json& j, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw rb::InputError("cannot open '" + path + "' for writing", "out");
+  out << j.dump(1) << '\n';
+  if (!out) throw rb::InputError("could not write '" + path + "'", "out");
+}
+
+int run_sweep_command(const RunArgs& a) {
+  rb::SweepSpec spec = rb::preset(a.preset);
+  if (!a.scenes.empty()) spec.scenes = split_names(a.scenes);
+  if (!a.integrators.empty()) spec.integrators = split_names(a.integrators);
+  if (!a.hs.empty()) spec.hs = rb::parse_number_list(a.hs, "h");
+  if (!a.tols.empty()) spec.tols = rb::parse_number_list(a.tols, "tol");
+  if (a.repeats >= 0) spec.repeats = a.repeats;
+  if (a.jobs > 0) spec.jobs = a.jobs;
+  if (a.no_stability) spec.stability.enabled = false;
+  spec.cache_dir = a.cache;
+  if (!a.shard.empty()) {
+    if (std::sscanf(a.shard.c_str(), "%d/%d", &spec.shard_index, &spec.shard_count) != 2 || spec.shard_count < 1 ||
+        spec.shard_index < 0 || spec.shard_index >= spec.shard_count)
+      throw rb::InputError("expected i/n with 0 <= i < n, got '" + a.shard + "'", "shard");
+  }
+  auto progress = [](const std::string& line) { std::fprintf(stderr, "rollbench: %s\n", line.c_str()); };
+  progress("preparing scenes and references");
+  const std::vector<rb::SweepScene> scenes = rb::prepare_scenes(spec);
+  for (const rb::SweepScene& s : scenes)
+  {
+    char error[32];
+    std::snprintf(error, sizeof error, "%.2e", s.reference.error);
+    progress("reference of " + s.scene.name + ": " + s.reference.kind + " (" + s.reference.method + "), own error " +
+             error + (s.reference.from_cache ? " (cached)" : "") + s.reference.message);
+  }
+  const std::vector<rb::RunRecord> runs = rb::run_sweep(spec, scenes, progress);
+  const rb::StabilityResults stability = rb::run_stability(spec, progress);
+  const nlohmann::json report = rb::make_report(spec, scenes, runs, stability);
+  write_json(report, a.out);
+  std::printf("%s", rb::summary_table(report).c_str());
+  std::printf("report written to %s\n", a.out.c_str());
+  return 0;
+}
+
+int run_merge(const std::vector<std::string>& inputs, const std::string& out) {
+  std::vector<nlohmann::json> shards;
+  for (const std::string& path : inputs) shards.push_back(rb::read_report(path));
+  write_json(rb::merge_reports(shards), out);
+  std::printf("merged %zu reports into %s\n", inputs.size(), out.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"rollbench: integrators compared on a ball rolling on z = f(x, y)"};
+  app.require_subcommand(1);
+
+  app.add_subcommand("list", "list the registered integrators and the shipped scenes");
+
+  TrajectoryArgs traj;
+  CLI::App* trajectory = app.add_subcommand("trajectory", "integrate one scene with one method and write a CSV");
+  trajectory->add_option("scene", traj.scene, "a shipped scene's name or a scene JSON file")->required();
+  trajectory->add_option("--integrator", traj.integrator, "registry name (see `rollbench list`)")->required();
+  trajectory->add_option("--h", traj.h, "step size of a fixed-step method");
+  trajectory->add_option("--rtol", traj.rtol, "relative tolerance of an adaptive method");
+  trajectory->add_option("--atol", traj.atol, "absolute tolerance of an adaptive method");
+  trajectory->add_option("--dt-out", traj.dt_out, "spacing of the output rows, >= h (default: the larger of 0.01 and h)");
+  trajectory->add_option("--t-end", traj.t_end, "end time (default: the scene's t_end)");
+  trajectory->add_option("--out", traj.out, "the CSV file to write")->required();
+
+  RunArgs run;
+  CLI::App* run_cmd = app.add_subcommand("run", "sweep scenes x integrators x h or tolerances into a JSON report");
+  run_cmd->add_option("--preset", run.preset, "quick (CI), default (the main job) or full (a study)");
+  run_cmd->add_option("--scenes", run.scenes, "comma-separated shipped scene names or JSON paths");
+  run_cmd->add_option("--integrators", run.integrators, "comma-separated registry names");
+  run_cmd->add_option("--h", run.hs, "step sizes, e.g. 0.1,0.05 or 2^-3..2^-8");
+  run_cmd->add_option("--tol", run.tols, "tolerances (rtol = atol) of adaptive methods, e.g. 1e-4,1e-8");
+  run_cmd->add_option("--repeats", run.repeats, "timed repeats per run");
+  run_cmd->add_option("--jobs", run.jobs, "threads for the accuracy runs");
+  run_cmd->add_option("--shard", run.shard, "i/n: run one slice of the sweep (join with `rollbench merge`)");
+  run_cmd->add_option("--cache", run.cache, "directory for cached reference solutions");
+  run_cmd->add_flag("--no-stability", run.no_stability, "skip the stability study of the preset");
+  run_cmd->add_option("--out", run.out, "the report to write")->required();
+
+  std::vector<std::string> merge_inputs;
+  std::string merge_out;
+  CLI::App* merge = app.add_subcommand("merge", "join shard reports into one");
+  merge->add_option("reports", merge_inputs, "shard reports")->required();
+  merge->add_option("--out", merge_out, "the merged report")->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "rollbench: %s\n", e.what());
+    return 2;
+  }
+
+  try {
+    if (app.got_subcommand("list")) return run_list();
+    if (app.got_subcommand("trajectory")) return run_trajectory(traj);
+    if (app.got_subcommand("run")) return run_sweep_command(run);
+    if (app.got_subcommand("merge")) return run_merge(merge_inputs, merge_out);
+  } catch (const rb::InputError& e) {
+    std::fprintf(stderr, "rollbench: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rollbench: internal error: %s\n", e.what());
+    return 1;
+  }
+  return 2;
+}

@@ -1,0 +1,63 @@
+#include "integrators/adaptive.hpp"
+
+#include <cstdio>
+#include <limits>
+
+namespace rb {
+
+Tolerances tolerances_of(const RunOptions& options) {
+  auto check = [](double value, const char* key) {
+    if (!std::isfinite(value) || value < 0.0)
+      throw InputError("an adaptive method needs a finite tolerance >= 0", key);
+  };
+  check(options.rtol, "rtol");
+  check(options.atol, "atol");
+  if (options.rtol == 0.0 && options.atol == 0.0)
+    throw InputError("an adaptive method needs rtol > 0 or atol > 0", "rtol");
+  if (!std::isfinite(options.h) || options.h < 0.0)
+    throw InputError("the initial step h must be finite and >= 0 (0 chooses one)", "h");
+  return {options.rtol, options.atol};
+}
+
+Validity attainable(const Tolerances& tol, const FlatState& y0) {
+  const double floor = 4.0 * std::numeric_limits<double>::epsilon();
+  if (tol.rtol >= floor || tol.atol >= floor * y0.cwiseAbs().maxCoeff()) return {};
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "the tolerances rtol = %.3g, atol = %.3g are below the rounding of the state (%.3g relative): "
+                "no step size can meet them",
+                tol.rtol, tol.atol, floor);
+  return {Status::step_underflow, text};
+}
+
+std::string underflow_message(double h, double t) {
+  char text[96];
+  std::snprintf(text, sizeof text, "the step size fell to %.3g at t = %.9g", h, t);
+  return text;
+}
+
+double initial_step(const Problem& problem, const FlatState& y0, const Tolerances& tol, int order, double span,
+                    Cost& cost) {
+  // root-mean-square norm weighted by the tolerances
+  // (kept above 0 so that atol = 0 with a zero component does not divide 0 by 0)
+  const FlatState scale =
+      (tol.atol + tol.rtol * y0.array().abs()).max(std::numeric_limits<double>::min()).matrix();
+  auto norm = [&](const FlatState& v) { return std::sqrt((v.array() / scale.array()).square().mean()); };
+  FlatState f0, f1;
+  problem.flat_rhs(y0.data(), f0.data());
+  const double d0 = norm(y0), d1 = norm(f0);
+  double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
+  h0 = std::min(h0, span);
+  // a second derivative estimate from one explicit Euler step
+  const FlatState y1 = y0 + h0 * f0;
+  problem.flat_rhs(y1.data(), f1.data());
+  cost.rhs_evals += 2;
+  const double d2 = norm(f1 - f0) / h0;
+  const double d12 = std::max(d1, d2);
+  const double h1 = d12 <= 1e-15 ? std::max(1e-6, h0 * 1e-3) : std::pow(0.01 / d12, 1.0 / (order + 1));
+  const double h = std::min({100.0 * h0, h1, span});
+  // a start where F is not finite gets a plain guess; the run reports it
+  return std::isfinite(h) && h > 0.0 ? h : 1e-3 * span;
+}
+
+}  // namespace rb

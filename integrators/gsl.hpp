@@ -1,0 +1,58 @@
+#pragma once
+// Adapters for the GSL odeiv2 steppers on the flat view (MODEL.md, family 5):
+// explicit rk2, rk4, rkf45, rkck, rk8pd, msadams and implicit rk1imp, rk2imp,
+// rk4imp, bsimp, msbdf, the implicit ones fed the exact Jacobian of F
+// (problems/jacobian.hpp).
+//
+// Two ways to drive a stepper:
+// - fixed step: one gsl_odeiv2_step_apply per step of drive_fixed_step (the
+//   shared loop: uniform steps landing on the outputs, per-step checks, step
+//   budget). GSL's error estimate is computed but not used.
+// - adaptive: one gsl_odeiv2_evolve_apply per accepted step with the
+//   standard control (rtol, atol on y), t1 = the next output time so the
+//   outputs are hit exactly.
+//
+// Every run allocates its GSL objects once and frees them on every path;
+// the counters live in the run, so one instance serves many threads.
+#include <string>
+
+#include "integrators/integrator.hpp"
+
+namespace rb {
+
+enum class GslDrive { fixed_step, adaptive };
+
+class GslIntegrator final : public Integrator {
+ public:
+  // stepper: GSL's name ("rk4", "rkf45", "msbdf", ...). Throws InputError
+  // (key "integrator") for a stepper GSL does not have, or a variable-order
+  // one (bsimp, msadams, msbdf) asked to run with a fixed step.
+  GslIntegrator(const std::string& stepper, GslDrive drive);
+
+  // "gsl-rk4" for a fixed step, "gsl-rk4-adaptive" for the adaptive drive.
+  std::string name() const override;
+  std::string family() const override { return "gsl"; }
+  // The order of the solution GSL propagates, which is not always the one
+  // gsl_odeiv2_step_order reports: rk2 advances with its 3rd-order member;
+  // variable-order methods declare their highest order.
+  int declared_order() const override;
+  bool adaptive() const override { return drive_ == GslDrive::adaptive; }
+  bool needs_jacobian() const override;
+  std::string description() const override;
+
+  // Fixed step: options.h > 0 is the step; rtol/atol, when given, set the
+  // Newton tolerance of the implicit steppers (default 1e-13). Adaptive:
+  // rtol, atol >= 0, not both 0; options.h is the first step (0: 1e-3 t_end).
+  RunResult integrate(const Problem& problem, const RunOptions& options) const override;
+
+ private:
+  int index_;  // into the stepper table in gsl.cpp
+  GslDrive drive_;
+};
+
+// GSL's default error handler aborts the process. This switches it off
+// (once, thread-safe) so that every GSL error comes back as a status code;
+// every GSL entry point of the suite calls it first.
+void gsl_errors_off();
+
+}  // namespace rb

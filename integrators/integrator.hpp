@@ -1,0 +1,73 @@
+#pragma once
+// What every integrator offers (DESIGN.md): a name, a family, a declared
+// order, whether it adapts its step, and integrate(problem, options) -> run.
+//
+// Integrators are immutable and stateless between runs, so one instance may
+// run on many threads at once; all run state lives in integrate().
+#include <string>
+#include <vector>
+
+#include "problems/problem.hpp"
+
+namespace rb {
+
+struct RunOptions {
+  double t_end = 0.0;  // 0 takes the problem's t_end
+  double h = 0.0;      // step of a fixed-step method; initial step (0 = automatic) of an adaptive one
+  double rtol = 0.0;   // tolerances of an adaptive method
+  double atol = 0.0;
+  // Times at which the state is recorded, increasing, in (0, t_end]; t_end is
+  // always recorded last. Empty: t_end only. Fixed-step methods land on them.
+  std::vector<double> output_times;
+  long max_steps = 100'000'000;  // accepted + rejected steps before "max-steps"
+};
+
+// Cost of a run, counted the same way by every integrator.
+struct Cost {
+  long steps = 0;           // accepted steps
+  long rejected = 0;        // rejected steps (adaptive methods)
+  long rhs_evals = 0;       // evaluations of F(y) or of (omega(z), G(z))
+  long jacobian_evals = 0;  // evaluations of the 14x14 Jacobian of F
+  long exp_evals = 0;       // so(3) exponentials (Lie-group methods)
+  long dexpinv_evals = 0;   // dexpinv applications (Lie-group methods)
+};
+
+// The states at the recorded output times, in order.
+struct Trajectory {
+  std::vector<double> t;
+  std::vector<FlatState> y;
+  void push(double time, const FlatState& state) {
+    t.push_back(time);
+    y.push_back(state);
+  }
+};
+
+struct RunResult {
+  Status status = Status::ok;
+  std::string message;     // why it stopped, empty when ok
+  double stop_time = 0.0;  // time of the last valid state
+  FlatState final_state = FlatState::Zero();  // the last valid state
+  Cost cost;
+  Trajectory output;       // every output up to the stop
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  virtual std::string name() const = 0;         // registry name, e.g. "rkmk4"
+  virtual std::string family() const = 0;      // "rk", "rkmk", "odeint", "gsl", ...
+  virtual int declared_order() const = 0;
+  // The order in R where a method is known to lose order in the rotation
+  // only (rkmk4-seminar); the declared order elsewhere.
+  virtual int rotation_order() const { return declared_order(); }
+  virtual bool adaptive() const { return false; }
+  virtual bool needs_jacobian() const { return false; }
+  virtual std::string description() const = 0;  // one line for `rollbench list`
+
+  // Advance the problem from its start to options.t_end (or the problem's),
+  // recording the outputs. Never throws for a failing method: failures are
+  // statuses. Throws InputError for options it cannot take (e.g. h <= 0).
+  virtual RunResult integrate(const Problem& problem, const RunOptions& options) const = 0;
+};
+
+}  // namespace rb

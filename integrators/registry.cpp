@@ -1,0 +1,77 @@
+#include "integrators/registry.hpp"
+
+#include "integrators/gsl.hpp"
+#include "integrators/explicit_midpoint.hpp"
+#include "integrators/munthe_kaas.hpp"
+#include "integrators/odeint.hpp"
+#include "integrators/runge_kutta.hpp"
+#include "integrators/tableaus.hpp"
+#include "problems/input_error.hpp"
+
+namespace rb {
+
+namespace {
+
+std::vector<std::unique_ptr<Integrator>> make_registry() {
+  std::vector<std::unique_ptr<Integrator>> r;
+  auto add = [&](std::unique_ptr<Integrator> integrator) { r.push_back(std::move(integrator)); };
+  using D = DexpinvKind;
+  namespace t = tableaus;
+
+  // classical explicit Runge-Kutta on the flat view
+  add(std::make_unique<RungeKutta>(t::euler()));
+  add(std::make_unique<RungeKutta>(t::heun()));
+  add(std::make_unique<RungeKutta>(t::kutta3()));
+  add(std::make_unique<RungeKutta>(t::rk4()));
+  add(std::make_unique<RungeKutta>(t::rk38()));
+  add(std::make_unique<ExplicitMidpoint>());  // the README's worked example
+
+  // Lie-group methods: exp-Euler and Runge-Kutta-Munthe-Kaas
+  add(std::make_unique<MuntheKaas>(t::euler(), "exp-euler"));
+  add(std::make_unique<MuntheKaas>(t::heun(), "rkmk2"));
+  add(std::make_unique<MuntheKaas>(t::kutta3(), "rkmk3"));
+  add(std::make_unique<MuntheKaas>(t::rk4(), "rkmk4"));
+  add(std::make_unique<MuntheKaas>(t::rk4(), "rkmk4-series", D::truncated));
+  add(std::make_unique<MuntheKaas>(t::rk4(), "rkmk4-seminar", D::seminar));
+
+  // --- odeint --- (Boost.Odeint steppers on the flat view)
+  add(odeint_euler());
+  add(odeint_rk4());
+  add(odeint_cash_karp54());
+  add(odeint_dopri5());
+  add(odeint_fehlberg78());
+  add(odeint_abm4());
+  add(odeint_abm5());
+  add(odeint_dopri5_adaptive());
+  add(odeint_cash_karp54_adaptive());
+  add(odeint_fehlberg78_adaptive());
+  add(odeint_bulirsch_stoer());
+  // --- end odeint ---
+
+  // --- gsl --- (GSL odeiv2 steppers on the flat view)
+  // fixed step: the one-step methods. msadams, msbdf and bsimp choose
+  // their order from a tolerance, so they run adaptive only; rk8pd too,
+  // since at fixed steps its error falls from 1e-3 to rounding within three
+  // halvings of h, too few for the order test to see order 8
+  for (const char* stepper : {"rk2", "rk4", "rkf45", "rkck", "rk1imp", "rk2imp", "rk4imp"})
+    add(std::make_unique<GslIntegrator>(stepper, GslDrive::fixed_step));
+  for (const char* stepper : {"rk2", "rkf45", "rkck", "rk8pd", "rk4imp", "bsimp", "msadams", "msbdf"})
+    add(std::make_unique<GslIntegrator>(stepper, GslDrive::adaptive));
+  // --- end gsl ---
+  return r;
+}
+
+}  // namespace
+
+const std::vector<std::unique_ptr<Integrator>>& registry() {
+  static const std::vector<std::unique_ptr<Integrator>> all = make_registry();
+  return all;
+}
+
+const Integrator& find_integrator(std::string_view name) {
+  for (const auto& integrator : registry())
+    if (integrator->name() == name) return *integrator;
+  throw InputError("unknown integrator '" + std::string(name) + "' (`rollbench list` shows them all)", "integrator");
+}
+
+}  // namespace rb

@@ -1,0 +1,87 @@
+#pragma once
+// What every problem offers the integrators (DESIGN.md): the flat view F(y),
+// the Lie-group view (omega(z), G(z)), the start, the validity checks of
+// MODEL.md ("Where the model stops holding") and an exact solution if known.
+//
+// A Problem is immutable and shared read-only by every run and thread; runs
+// keep their own counters.
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "problems/rolling_ball.hpp"
+#include "problems/status.hpp"
+
+namespace rb {
+
+// [xmin, xmax] x [ymin, ymax]; leaving it ends a run. Unbounded by default.
+struct Domain {
+  double xmin = -std::numeric_limits<double>::infinity();
+  double xmax = std::numeric_limits<double>::infinity();
+  double ymin = -std::numeric_limits<double>::infinity();
+  double ymax = std::numeric_limits<double>::infinity();
+  bool contains(double x, double y) const { return x >= xmin && x <= xmax && y >= ymin && y <= ymax; }
+};
+
+// A closed-form solution at time t. The rotation is known only for some
+// motions (a fixed rotation axis); has_rotation says whether R is exact.
+struct ExactState {
+  Vec2 alpha;
+  Vec3 omega;
+  Mat3 R = Mat3::Identity();
+  bool has_rotation = false;
+};
+
+class ExactSolution {
+ public:
+  virtual ~ExactSolution() = default;
+  // The name scenes use for it under "exact": "plane", "incline", ...
+  virtual std::string name() const = 0;
+  virtual ExactState at(double t) const = 0;
+};
+
+// Validity of a state, as a status (ok while the model holds).
+struct Validity {
+  Status status = Status::ok;
+  std::string reason;  // a sentence with the numbers, empty when ok
+};
+
+class Problem {
+ public:
+  Problem(std::string name, RollingBall model, FlatState y0, double t_end, Domain domain = {},
+          std::shared_ptr<const ExactSolution> exact = nullptr)
+      : name_(std::move(name)), model_(std::move(model)), y0_(y0), t_end_(t_end), domain_(domain),
+        exact_(std::move(exact)) {}
+
+  const std::string& name() const { return name_; }
+  const RollingBall& model() const { return model_; }
+  const FlatState& y0() const { return y0_; }
+  double t_end() const { return t_end_; }
+  const Domain& domain() const { return domain_; }
+  // nullptr when the scene has no closed form.
+  const ExactSolution* exact() const { return exact_.get(); }
+
+  // The flat view: dy = F(y), 14 numbers each.
+  template <class T>
+  void flat_rhs(const T* y, T* dy) const { model_.flat_rhs(y, dy); }
+  // The Lie-group view: omega(z) and G(z), z and dz 5 numbers, omega 3.
+  template <class T>
+  void lie_rhs(const T* z, T* omega, T* dz) const { model_.lie_rhs(z, omega, dz); }
+
+  // Cheap check for every step: the state is finite and inside the domain.
+  Validity check_step(const FlatState& y) const;
+  // Every check of MODEL.md: also lift-off (F . N <= 0), curvature
+  // (r max kappa >= 1 or E singular) and a non-finite landscape.
+  Validity check_full(const FlatState& y) const;
+
+ private:
+  std::string name_;
+  RollingBall model_;
+  FlatState y0_;
+  double t_end_;
+  Domain domain_;
+  std::shared_ptr<const ExactSolution> exact_;
+};
+
+}  // namespace rb

@@ -1,0 +1,365 @@
+#include "problems/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "problems/exact.hpp"
+#include "problems/input_error.hpp"
+
+namespace rb {
+
+namespace {
+
+using json = nlohmann::json;
+
+std::string join_key(const std::string& prefix, const std::string& key) {
+  return prefix.empty() ? key : prefix + "." + key;
+}
+
+std::string list_of(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+std::string num(double x) {
+  std::ostringstream s;
+  s.precision(10);
+  s << x;
+  return s.str();
+}
+
+// Builds the DOM like nlohmann's own parser, but knows the key it is inside
+// of, so that duplicate keys and numbers that overflow a double (1e400) are
+// errors naming their key instead of a silent last-wins or a bare message.
+class SceneSax final : public nlohmann::json_sax<json> {
+ public:
+  json root;
+  std::optional<InputError> error;
+
+  bool null() override { return put(json(nullptr)) != nullptr; }
+  bool boolean(bool b) override { return put(json(b)) != nullptr; }
+  bool number_integer(number_integer_t v) override { return put(json(v)) != nullptr; }
+  bool number_unsigned(number_unsigned_t v) override { return put(json(v)) != nullptr; }
+  bool number_float(number_float_t v, const string_t&) override { return put(json(v)) != nullptr; }
+  bool string(string_t& s) override { return put(json(s)) != nullptr; }
+  bool binary(binary_t& b) override { return put(json(b)) != nullptr; }
+  bool start_object(std::size_t) override {
+    frames_.push_back({put(json::object()), {}, {}});
+    return true;
+  }
+  bool key(string_t& k) override {
+    Frame& f = frames_.back();
+    f.key = k;
+    if (!f.seen.insert(k).second) {
+      error = InputError("the key appears more than once", path());
+      return false;
+    }
+    return true;
+  }
+  bool end_object() override {
+    frames_.pop_back();
+    return true;
+  }
+  bool start_array(std::size_t) override {
+    frames_.push_back({put(json::array()), {}, {}});
+    return true;
+  }
+  bool end_array() override {
+    frames_.pop_back();
+    return true;
+  }
+  bool parse_error(std::size_t position, const std::string& last_token, const json::exception& ex) override {
+    if (ex.id == 406) {
+      error = InputError("the number " + last_token + " is not a finite double", path());
+    } else {
+      // drop nlohmann's "[json.exception.parse_error.101] " prefix
+      std::string what = ex.what();
+      if (const auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
+      error = InputError("invalid JSON at byte " + std::to_string(position) + ": " + what);
+    }
+    return false;
+  }
+
+ private:
+  struct Frame {
+    json* value;
+    std::string key;  // the last key read, for objects
+    std::set<std::string> seen;
+  };
+  std::vector<Frame> frames_;
+
+  // the dotted key of the value being read; array elements take their array's key
+  std::string path() const {
+    std::string p;
+    for (const Frame& f : frames_)
+      if (f.value->is_object() && !f.key.empty()) p = join_key(p, f.key);
+    return p;
+  }
+  json* put(json v) {
+    if (frames_.empty()) {
+      root = std::move(v);
+      return &root;
+    }
+    json& parent = *frames_.back().value;
+    if (parent.is_array()) {
+      parent.push_back(std::move(v));
+      return &parent.back();
+    }
+    return &(parent[frames_.back().key] = std::move(v));
+  }
+};
+
+json parse_json(std::string_view text) {
+  SceneSax sax;
+  const bool ok = json::sax_parse(text, &sax);
+  if (sax.error) throw *sax.error;
+  if (!ok) throw InputError("invalid JSON");
+  return std::move(sax.root);
+}
+
+// --- typed access, every error naming its dotted key ---
+
+void reject_unknown_keys(const json& obj, const std::string& where, const std::vector<std::string>& known) {
+  for (const auto& item : obj.items())
+    if (std::find(known.begin(), known.end(), item.key()) == known.end())
+      throw InputError("unknown key (known here: " + list_of(known) + ")", join_key(where, item.key()));
+}
+
+const json* optional_key(const json& obj, const char* key) {
+  const auto it = obj.find(key);
+  return it == obj.end() ? nullptr : &*it;
+}
+
+const json& required_key(const json& obj, const std::string& where, const char* key) {
+  const json* v = optional_key(obj, key);
+  if (!v) throw InputError("missing required key", join_key(where, key));
+  return *v;
+}
+
+const json& object_at(const json& v, const std::string& key) {
+  if (!v.is_object()) throw InputError(std::string("must be an object, not ") + v.type_name(), key);
+  return v;
+}
+
+double number_at(const json& v, const std::string& key) {
+  if (!v.is_number()) throw InputError(std::string("must be a number, not ") + v.type_name(), key);
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) throw InputError("must be a finite number", key);
+  return x;
+}
+
+std::string string_at(const json& v, const std::string& key) {
+  if (!v.is_string()) throw InputError(std::string("must be a string, not ") + v.type_name(), key);
+  return v.get<std::string>();
+}
+
+template <int n>
+Eigen::Matrix<double, n, 1> vector_at(const json& v, const std::string& key) {
+  const std::string want = "must be an array of " + std::to_string(n) + " numbers";
+  if (!v.is_array()) throw InputError(want + ", not " + v.type_name(), key);
+  if (v.size() != static_cast<std::size_t>(n)) throw InputError(want + ", not " + std::to_string(v.size()), key);
+  Eigen::Matrix<double, n, 1> out;
+  for (int i = 0; i < n; ++i) {
+    if (!v[i].is_number())
+      throw InputError(want + "; element " + std::to_string(i) + " is a " + v[i].type_name(), key);
+    out[i] = v[i].get<double>();
+    if (!std::isfinite(out[i])) throw InputError(want + "; element " + std::to_string(i) + " is not finite", key);
+  }
+  return out;
+}
+
+// param names must not shadow the formula's own names
+void check_param_name(const std::string& name) {
+  static const std::set<std::string> reserved = {"x",    "y",    "pi",   "e",    "sin",  "cos",  "tan",
+                                                 "asin", "acos", "atan", "sinh", "cosh", "tanh", "exp",
+                                                 "log",  "sqrt", "atan2", "hypot", "abs", "min", "max",
+                                                 "floor"};
+  const std::string key = join_key("params", name);
+  const bool identifier = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
+                          std::all_of(name.begin(), name.end(), [](char c) {
+                            return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                          });
+  if (!identifier) throw InputError("a param name must be an identifier (letters, digits, '_')", key);
+  if (reserved.count(name)) throw InputError("a param may not be named like a variable, constant or function", key);
+}
+
+SceneStart read_start(const json& v) {
+  object_at(v, "start");
+  reject_unknown_keys(v, "start", {"contact", "omega", "velocity", "spin", "orientation"});
+  SceneStart s;
+  s.contact = vector_at<2>(required_key(v, "start", "contact"), "start.contact");
+  const json* omega = optional_key(v, "omega");
+  const json* velocity = optional_key(v, "velocity");
+  const json* spin = optional_key(v, "spin");
+  if (omega && velocity) throw InputError("give either omega or velocity (with spin), not both", "start");
+  if (!omega && !velocity) throw InputError("missing omega or velocity (with spin): give one of them", "start");
+  if (spin && !velocity) throw InputError("spin goes with velocity; with omega the spin is part of it", "start.spin");
+  if (omega) s.omega = vector_at<3>(*omega, "start.omega");
+  if (velocity) s.velocity = vector_at<3>(*velocity, "start.velocity");
+  if (spin) s.spin = number_at(*spin, "start.spin");
+  if (const json* q = optional_key(v, "orientation")) {
+    s.orientation = vector_at<4>(*q, "start.orientation");
+    const double norm = s.orientation.norm();
+    if (std::abs(norm - 1.0) > 1e-6)
+      throw InputError("the quaternion [w, x, y, z] must have unit norm, not " + num(norm), "start.orientation");
+    s.orientation /= norm;
+  }
+  return s;
+}
+
+// The scene's keys and their own ranges; no landscape yet.
+Scene read_scene(const json& root, const std::string& source) {
+  if (!root.is_object()) throw InputError(std::string("a scene must be a JSON object, not ") + root.type_name());
+  reject_unknown_keys(root, "", {"name", "description", "landscape", "params", "domain", "ball", "gravity", "start",
+                                 "t_end", "exact"});
+  Scene s;
+  s.source = source;
+  s.name = string_at(required_key(root, "", "name"), "name");
+  if (s.name.empty()) throw InputError("must not be empty", "name");
+  if (const json* d = optional_key(root, "description")) s.description = string_at(*d, "description");
+  s.landscape = string_at(required_key(root, "", "landscape"), "landscape");
+  if (const json* p = optional_key(root, "params")) {
+    object_at(*p, "params");
+    for (const auto& item : p->items()) {
+      check_param_name(item.key());
+      s.params[item.key()] = number_at(item.value(), join_key("params", item.key()));
+    }
+  }
+  if (const json* d = optional_key(root, "domain")) {
+    const Eigen::Vector4d b = vector_at<4>(*d, "domain");
+    if (!(b[0] < b[1]) || !(b[2] < b[3]))
+      throw InputError("[xmin, xmax, ymin, ymax] needs xmin < xmax and ymin < ymax", "domain");
+    s.domain = Domain{b[0], b[1], b[2], b[3]};
+    s.has_domain = true;
+  }
+  const json& ball = object_at(required_key(root, "", "ball"), "ball");
+  reject_unknown_keys(ball, "ball", {"radius", "mass"});
+  s.ball.radius = number_at(required_key(ball, "ball", "radius"), "ball.radius");
+  s.ball.mass = number_at(required_key(ball, "ball", "mass"), "ball.mass");
+  if (!(s.ball.radius > 0.0)) throw InputError("the radius must be > 0", "ball.radius");
+  if (!(s.ball.mass > 0.0)) throw InputError("the mass must be > 0", "ball.mass");
+  if (const json* g = optional_key(root, "gravity")) s.gravity = number_at(*g, "gravity");
+  if (!(s.gravity >= 0.0)) throw InputError("gravity g0 must be >= 0 (it points down, (0, 0, -g0))", "gravity");
+  s.start = read_start(required_key(root, "", "start"));
+  s.t_end = number_at(required_key(root, "", "t_end"), "t_end");
+  if (!(s.t_end > 0.0)) throw InputError("t_end must be > 0", "t_end");
+  if (const json* e = optional_key(root, "exact")) s.exact = string_at(*e, "exact");
+  const std::vector<std::string> known = exact_names();
+  if (s.exact != "none" && std::find(known.begin(), known.end(), s.exact) == known.end())
+    throw InputError("unknown exact solution '" + s.exact + "' (known: none, " + list_of(known) + ")", "exact");
+  return s;
+}
+
+// What needs the landscape: a regular, finite, tangential start.
+void check_start(const Scene& s, const RollingBall& model) {
+  const Vec2 a = s.start.contact;
+  if (!s.domain.contains(a.x(), a.y())) throw InputError("the start contact lies outside the domain", "start.contact");
+  const Jet2<double> f = model.landscape().at(a.x(), a.y());
+  for (const double d : {f.f, f.fx, f.fy, f.fxx, f.fxy, f.fyy})
+    if (!std::isfinite(d))
+      throw InputError("the landscape or its derivatives are not finite at the start contact", "start.contact");
+  const Vec3 N = model.normal_at(a.x(), a.y());
+  if (s.start.velocity) {
+    const Vec3& u = *s.start.velocity;
+    if (std::abs(u.dot(N)) > 1e-9 * u.norm())
+      throw InputError("the centre's velocity has a normal component u0 . N = " + num(u.dot(N)) +
+                           "; only its tangential part can be realised",
+                       "start.velocity");
+  }
+  const FlatState y0 = start_state(s, model);
+  if (!y0.allFinite()) throw InputError("the start state is not finite (ball or start values too large)", "start");
+  // T and T^-1 must survive double range (r = 1e-200 makes m r^2 vanish)
+  const Vec3 omega0 = start_omega(s, model);
+  const Vec3 omega_back = model.omega_from_momentum(N, Vec3(momentum_of(y0)));
+  if (!omega_back.allFinite() || (omega_back - omega0).norm() > 1e-9 * (1.0 + omega0.norm()))
+    throw InputError("the ball's radius and mass are too extreme for its inertia to be represented in doubles",
+                     "ball");
+  const Derived d = model.derived(y0);
+  const double r = s.ball.radius;
+  if (!(r * d.kappa1 < 1.0) || !(d.det_E > 1e-12))
+    throw InputError("the contact is not regular: r * max curvature = " + num(r * d.kappa1) +
+                         " (must be < 1: the ball does not fit the landscape there)",
+                     "start.contact");
+}
+
+}  // namespace
+
+RollingBall make_model(const Scene& scene) {
+  try {
+    return RollingBall(Landscape::parse(scene.landscape, scene.params),
+                       BallParams{scene.ball.radius, scene.ball.mass, scene.gravity});
+  } catch (const InputError& e) {
+    throw e.under("landscape");
+  }
+}
+
+Vec3 start_omega(const Scene& scene, const RollingBall& model) {
+  if (scene.start.omega) return *scene.start.omega;
+  const Vec2 a = scene.start.contact;
+  const Vec3 N = model.normal_at(a.x(), a.y());
+  return N.cross(*scene.start.velocity) / scene.ball.radius + scene.start.spin * N;
+}
+
+Mat3 start_rotation(const Scene& scene) {
+  const Eigen::Vector4d& q = scene.start.orientation;
+  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+}
+
+FlatState start_state(const Scene& scene, const RollingBall& model) {
+  const Vec2 a = scene.start.contact;
+  const Vec3 N = model.normal_at(a.x(), a.y());
+  return make_flat(start_rotation(scene), model.momentum_from_omega(N, start_omega(scene, model)), a);
+}
+
+Scene parse_scene(std::string_view json_text, const std::string& source) {
+  Scene scene = read_scene(parse_json(json_text), source);
+  const RollingBall model = make_model(scene);
+  check_start(scene, model);
+  make_exact(scene, model);  // throws (key "exact") when it does not fit the scene
+  return scene;
+}
+
+Scene load_scene_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in || std::filesystem::is_directory(path)) throw InputError("cannot read the scene file '" + path + "'", "scene");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_scene(text.str(), path);
+}
+
+std::vector<std::string> shipped_scene_names() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(RB_SCENE_DIR, ec))
+    if (entry.is_regular_file() && entry.path().extension() == ".json") names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+Scene load_scene(const std::string& name_or_path) {
+  const bool is_path = name_or_path.find('/') != std::string::npos ||
+                       (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
+  if (is_path) return load_scene_file(name_or_path);
+  const std::vector<std::string> names = shipped_scene_names();
+  if (std::find(names.begin(), names.end(), name_or_path) == names.end())
+    throw InputError("unknown scene '" + name_or_path + "' (shipped: " + list_of(names) +
+                         "; a scene file is given by a path ending in .json)",
+                     "scene");
+  return load_scene_file(std::string(RB_SCENE_DIR) + "/" + name_or_path + ".json");
+}
+
+Problem make_problem(const Scene& scene) {
+  RollingBall model = make_model(scene);
+  const FlatState y0 = start_state(scene, model);
+  auto exact = make_exact(scene, model);
+  return Problem(scene.name, std::move(model), y0, scene.t_end, scene.domain, std::move(exact));
+}
+
+}  // namespace rb

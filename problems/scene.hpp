@@ -1,0 +1,75 @@
+#pragma once
+// A scene (FORMATS.md, "Scene (JSON)"): one problem instance as a JSON file,
+// read with nlohmann-json and checked completely on load. Every problem with
+// the input throws rb::InputError naming the key ("ball.radius",
+// "start.velocity", "landscape" with the formula's column, ...); nothing is
+// defaulted silently and nothing crashes.
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "problems/problem.hpp"
+
+namespace rb {
+
+// The ball of a scene, in scene units (lengths in the landscape's units).
+struct SceneBall {
+  double radius = 0.0;  // r > 0
+  double mass = 0.0;    // m > 0
+};
+
+// The start of a scene. Exactly one of omega and velocity is set.
+struct SceneStart {
+  Vec2 contact = Vec2::Zero();    // alpha0 = (x, y) of the contact point
+  std::optional<Vec3> omega;      // angular velocity, world frame
+  std::optional<Vec3> velocity;   // the centre's velocity u0 (tangential), world frame
+  double spin = 0.0;              // s0 = omega . N, with velocity only
+  // The orientation R0 as a unit quaternion (w, x, y, z), normalised on load.
+  Eigen::Vector4d orientation = Eigen::Vector4d(1.0, 0.0, 0.0, 0.0);
+};
+
+struct Scene {
+  std::string name;
+  std::string description;             // empty when the file has none
+  std::string landscape;               // the formula text of z = f(x, y)
+  std::map<std::string, double> params;  // named constants of the formula
+  Domain domain;                       // unbounded when the file has none
+  bool has_domain = false;
+  SceneBall ball;
+  double gravity = 9.81;               // g0 >= 0; gravity is (0, 0, -g0)
+  SceneStart start;
+  double t_end = 0.0;                  // > 0
+  std::string exact = "none";          // a name of exact_names() or "none"
+  std::string source = "<text>";       // the file it came from, or "<text>"
+};
+
+// Parses and checks a scene. source names where the text came from (kept in
+// Scene::source). Throws InputError on any problem, naming the key.
+Scene parse_scene(std::string_view json_text, const std::string& source = "<text>");
+
+// Reads and parses a scene file; an unreadable file throws InputError (key "scene").
+Scene load_scene_file(const std::string& path);
+
+// The names of the shipped scenes (the .json files in problems/scenes), sorted.
+std::vector<std::string> shipped_scene_names();
+
+// A shipped scene by name ("valley-rest"), or a scene file by path (anything
+// ending in ".json" or containing a '/'). An unknown name throws InputError
+// (key "scene") listing the shipped ones.
+Scene load_scene(const std::string& name_or_path);
+
+// The model of a scene: its landscape with the params, the ball and gravity.
+RollingBall make_model(const Scene& scene);
+
+// The start in world frame: omega0 (given, or (N x u0) / r + s0 N), R0 from
+// the quaternion, and the flat state y0 = (R0, v0 = T omega0, alpha0).
+Vec3 start_omega(const Scene& scene, const RollingBall& model);
+Mat3 start_rotation(const Scene& scene);
+FlatState start_state(const Scene& scene, const RollingBall& model);
+
+// The problem of a scene, with its exact solution when the scene names one.
+Problem make_problem(const Scene& scene);
+
+}  // namespace rb

@@ -1,0 +1,23 @@
+#include "problems/so3.hpp"
+
+#include <Eigen/SVD>
+
+namespace rb {
+
+Mat3 project_to_so3(const Mat3& M) {
+  Eigen::JacobiSVD<Mat3> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Mat3 D = Mat3::Identity();
+  // keep det = +1 (a reflection is not a rotation)
+  if ((svd.matrixU() * svd.matrixV().transpose()).determinant() < 0) D(2, 2) = -1.0;
+  return svd.matrixU() * D * svd.matrixV().transpose();
+}
+
+double rotation_angle_between(const Mat3& R_a, const Mat3& R_b) {
+  const Mat3 Q = project_to_so3(R_a).transpose() * project_to_so3(R_b);
+  // the angle from the antisymmetric part is accurate for small angles,
+  // where acos((tr - 1) / 2) loses half the digits
+  const Vec3 s(Q(2, 1) - Q(1, 2), Q(0, 2) - Q(2, 0), Q(1, 0) - Q(0, 1));
+  return std::atan2(0.5 * s.norm(), 0.5 * (Q.trace() - 1.0));
+}
+
+}  // namespace rb

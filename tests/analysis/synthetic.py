@@ -1,0 +1,253 @@
+"""Synthetic rollbench reports with known answers.
+
+Every fixed-step error is exactly C * h^p and every cost exactly k / h, so a
+test can compute what the analysis must print (orders, cost to accuracy)
+from the model below instead of trusting the analysis' own output.
+Adaptive runs follow error = a * tol and rhs_evals = k * tol^(-1/q).
+"""
+import copy
+import math
+
+import numpy as np
+
+T_END = 2.0
+HS = [2.0 ** -k for k in range(4, 10)]
+TOLS = [1e-4, 1e-6, 1e-8, 1e-10, 1e-12]
+SAMPLE_SPREAD = (1.00, 0.98, 1.03, 0.99, 1.01)  # timing noise, median exactly 1
+
+# scene: (reference kind, reference error = the floor)
+SCENES = {"plane": ("exact", 0.0), "valley-sideways": ("computed", 1e-12)}
+# every error constant is multiplied by the scene's factor (a harder scene costs more)
+SCENE_FACTOR = {"plane": 1.0, "valley-sideways": 3.0}
+
+# name: family, order (contact), order (rotation), C (contact), C (rotation), stages, ns per rhs eval
+FIXED = {
+    "euler":         ("rk", 1, 1, 0.5, 0.2, 1, 80.0),
+    "exp-euler":     ("rkmk", 1, 1, 0.3, 0.1, 1, 120.0),
+    "rk4":           ("rk", 4, 4, 2.0, 1.0, 4, 80.0),
+    "rkmk4":         ("rkmk", 4, 4, 1.0, 0.5, 4, 130.0),
+    "rkmk4-seminar": ("rkmk", 4, 3, 1.0, 0.3, 4, 125.0),
+    "odeint-rk4":    ("odeint", 4, 4, 2.6, 1.3, 4, 90.0),
+    "gsl-rk4":       ("gsl", 4, 4, 0.05, 0.05, 4, 100.0),
+}
+# name: family, declared order, a (error = a * tol), k (rhs = k * tol^(-1/q)), q, ns per rhs eval
+ADAPTIVE = {
+    "odeint-dopri5-adaptive": ("odeint", 5, 5.0, 40.0, 5.0, 95.0),
+    "gsl-rkf45-adaptive":     ("gsl", 5, 2.0, 60.0, 5.0, 105.0),
+}
+# (scene, integrator, h or tol): status, stop time, message
+FAILURES = {
+    ("valley-sideways", "euler", HS[0]): ("diverged", 1.3, "non-finite state at t = 1.3"),
+    ("valley-sideways", "exp-euler", HS[0]): ("lift-off", 0.8, "normal force F.N = -0.02 <= 0 at t = 0.8"),
+    ("valley-sideways", "gsl-rkf45-adaptive", 1e-12): ("step-underflow", 0.4, "gsl: step size underflow | h < 1e-15"),
+}
+COMPONENT_SCALE = {"contact": 1.0, "centre": 1.1, "omega": 3.0}
+
+
+def fixed_error(scene, name, h, component="contact"):
+    _, p, prot, c, crot, _, _ = FIXED[name]
+    c, crot = c * SCENE_FACTOR[scene], crot * SCENE_FACTOR[scene]
+    return crot * h ** prot if component == "rotation" else COMPONENT_SCALE[component] * c * h ** p
+
+
+def fixed_rhs(name, h):
+    return FIXED[name][5] * T_END / h
+
+
+def fixed_wall(name, h):
+    return fixed_rhs(name, h) * FIXED[name][6] * 1e-9
+
+
+def adaptive_error(scene, name, tol, component="contact"):
+    a = ADAPTIVE[name][2] * SCENE_FACTOR[scene]
+    return a * tol * (0.5 if component == "rotation" else COMPONENT_SCALE[component])
+
+
+def adaptive_rhs(name, tol):
+    _, _, _, k, q, _ = ADAPTIVE[name]
+    return k * tol ** (-1.0 / q)
+
+
+def adaptive_wall(name, tol):
+    return adaptive_rhs(name, tol) * ADAPTIVE[name][5] * 1e-9
+
+
+def _wall(median):
+    samples = [median * s for s in SAMPLE_SPREAD]
+    return {"median": float(np.median(samples)), "min": min(samples), "max": max(samples),
+            "repeats": len(samples), "samples": samples}
+
+
+def _errors(scene, value_of):
+    floor = SCENES[scene][1]
+    error = {"reference": SCENES[scene][0], "floor": floor, "below_floor": []}
+    for c in ("contact", "centre", "omega", "rotation"):
+        v = value_of(c)
+        if v < floor:
+            error[c] = None
+            error["below_floor"].append(c)
+        else:
+            error[c] = v
+    return error
+
+
+def _run(scene, name, family, order, rotation_order, adaptive, setting, error, rhs, wall, steps):
+    status, stop, message = FAILURES.get((scene, name, setting), ("ok", T_END, ""))
+    failed = status != "ok"
+    run = {"scene": scene, "integrator": name, "family": family, "declared_order": order,
+           "declared_rotation_order": rotation_order, "adaptive": adaptive,
+           "h": None if adaptive else setting, "rtol": setting if adaptive else None,
+           "atol": setting if adaptive else None, "status": status, "message": message,
+           "stop_time": stop, "steps": steps, "rejected": 3 if adaptive else 0, "rhs_evals": rhs,
+           "jacobian_evals": 0, "exp_evals": steps if family == "rkmk" else 0,
+           "dexpinv_evals": 4 * steps if family == "rkmk" else 0, "wall_s": _wall(wall),
+           "error": _errors(scene, error), "scd": None,
+           "drift": {"energy": 1e-3 * math.sqrt(error("contact")), "rotation_defect":
+                     1e-15 if family == "rkmk" else error("rotation")},
+           "final": {"t": stop, "contact": [0.0, 0.0]}}
+    if failed:
+        for c in ("contact", "centre", "omega", "rotation"):
+            run["error"][c] = None
+        run["error"]["below_floor"] = []
+    else:
+        worst = max(v for v in (run["error"][c] for c in ("contact", "omega")) if v is not None)
+        run["scd"] = -math.log10(worst)
+    return run
+
+
+def _orders(runs, floors):
+    out = []
+    for scene in SCENES:
+        for name, (family, p, prot, *_rest) in FIXED.items():
+            group = [r for r in runs if r["scene"] == scene and r["integrator"] == name and r["status"] == "ok"]
+            observed, ci95, fits = {}, {}, {}
+            for c in ("contact", "centre", "omega", "rotation"):
+                pts = [(r["h"], r["error"][c]) for r in group
+                       if r["error"][c] is not None and r["error"][c] > 10 * floors[scene]]
+                h, e = np.log([x[0] for x in pts]), np.log([x[1] for x in pts])
+                slope = float(np.polyfit(h, e, 1)[0])
+                observed[c], ci95[c] = slope, 0.01
+                fits[c] = {"h_min": min(x[0] for x in pts), "h_max": max(x[0] for x in pts),
+                           "points": len(pts), "r2": 1.0}
+            ok = abs(observed["contact"] - p) <= 0.2 and abs(observed["rotation"] - prot) <= 0.2
+            out.append({"scene": scene, "integrator": name, "declared": p, "declared_rotation": prot,
+                        "observed": observed, "ci95": ci95, "fit": fits["contact"], "fits": fits,
+                        "pass": ok})
+    return out
+
+
+def _stability():
+    t = np.logspace(-2, 3, 30)
+    # energy error, rotation defect, stop time (None: reaches the end)
+    growth = {
+        "euler": (1e-3 * t ** 2, 1e-4 * t ** 2, 300.0),
+        "exp-euler": (1e-3 * t, 2e-16 * (1 + 0.3 * np.sin(t)), None),
+        "rk4": (4e-9 * t, 1e-10 * t, None),
+        "rkmk4": (1e-9 * t, 1e-15 * (1 + 0.3 * np.cos(t)), None),
+    }
+    drift = []
+    for name, (energy, defect, stop) in growth.items():
+        keep = t <= (stop or t[-1])
+        drift.append({"scene": "valley-sideways", "integrator": name, "family": FIXED[name][0], "h": 0.01,
+                      "status": "diverged" if stop else "ok",
+                      "message": f"non-finite state at t = {stop}" if stop else "",
+                      "stop_time": stop or float(t[-1]), "t": t[keep].tolist(),
+                      "energy_error": energy[keep].tolist(), "rotation_defect": defect[keep].tolist(),
+                      "steps": int((stop or t[-1]) / 0.01), "rhs_evals": int(FIXED[name][5] * (stop or t[-1]) / 0.01),
+                      "wall_s": 0.5})
+    largest = {"euler": 2 ** -6, "exp-euler": 2 ** -5, "rk4": 2 ** -2, "rkmk4": 2 ** -2,
+               "rkmk4-seminar": 2 ** -2, "odeint-rk4": 2 ** -2, "gsl-rk4": 2 ** -3}
+    stable = []
+    for scene in SCENES:
+        for name, h in largest.items():
+            if scene == "valley-sideways" and name == "euler":
+                h = None  # never within the thresholds
+            tried = [{"h": 2.0 ** -k, "status": "ok" if h and 2.0 ** -k <= h else "diverged",
+                      "contact_error": 1e-3, "energy_error": 1e-3} for k in range(1, 9)]
+            stable.append({"scene": scene, "integrator": name, "family": FIXED[name][0], "h": h,
+                           "thresholds": {"contact": 0.01, "energy": 0.01}, "tried": tried})
+    return {"drift": drift, "largest_stable_h": stable}
+
+
+def make_report():
+    runs = []
+    for scene in SCENES:
+        for name, (family, p, prot, *_rest) in FIXED.items():
+            for h in HS:
+                runs.append(_run(scene, name, family, p, prot, False, h, lambda c: fixed_error(scene, name, h, c),
+                                 fixed_rhs(name, h), fixed_wall(name, h), int(round(T_END / h))))
+        for name, (family, p, *_rest) in ADAPTIVE.items():
+            for tol in TOLS:
+                rhs = adaptive_rhs(name, tol)
+                runs.append(_run(scene, name, family, p, p, True, tol, lambda c: adaptive_error(scene, name, tol, c),
+                                 rhs, adaptive_wall(name, tol), int(rhs / 6)))
+    floors = {s: f for s, (_, f) in SCENES.items()}
+    report = {
+        "schema": "rollbench.report/1", "created": "2026-11-22T12:00:00Z", "git": "synthetic",
+        "machine": {"cpu": "Synthetic CPU", "cores": 2, "os": "Linux", "load": [0.1, 0.1, 0.1]},
+        "build": {"compiler": "g++ 12.2", "flags": "-O3", "type": "Release", "libraries": {}},
+        "preset": "custom",
+        "references": [{"scene": s, "kind": k, "method": "exact" if k == "exact" else "rk8pd h/2 cross-check",
+                        "cross_check": "—" if k == "exact" else "dopri5 tol 1e-14", "error": f}
+                       for s, (k, f) in SCENES.items()],
+        "runs": runs,
+        "orders": None,
+        "stability": _stability(),
+    }
+    report["orders"] = _orders(runs, floors)
+    return report
+
+
+def minimal_report():
+    """Runs only: no orders, references, stability (a quick preset's report)."""
+    report = make_report()
+    for key in ("orders", "references", "stability"):
+        del report[key]
+    return report
+
+
+def subset(report, scene, integrators):
+    """A copy with one scene's runs of some integrators (a small report for quick tests)."""
+    out = copy.deepcopy(report)
+    out["runs"] = [r for r in out["runs"] if r["scene"] == scene and r["integrator"] in integrators]
+    return out
+
+
+def slowed(report, factor, integrator=None):
+    """A copy with every raw timing sample (of one integrator, or all) multiplied by factor."""
+    out = copy.deepcopy(report)
+    for r in out["runs"]:
+        if integrator is None or r["integrator"] == integrator:
+            w = r["wall_s"]
+            w["samples"] = [s * factor for s in w["samples"]]
+            w["median"], w["min"], w["max"] = (float(np.median(w["samples"])), min(w["samples"]),
+                                               max(w["samples"]))
+    return out
+
+
+def perf_json():
+    """A Google Benchmark --benchmark_out file for the fixed-step methods."""
+    benchmarks = []
+    for scene in ("valley-sideways", "bowl-3d"):
+        for name, (_, _, _, _, _, stages, ns) in FIXED.items():
+            per_step = stages * ns * (1.2 if scene == "bowl-3d" else 1.0)
+            benchmarks.append({"name": f"steps/{scene}/{name}", "run_name": f"steps/{scene}/{name}",
+                               "run_type": "iteration", "iterations": 1000, "real_time": per_step,
+                               "cpu_time": per_step, "time_unit": "us", "ns_per_step": per_step,
+                               "rhs_per_step": float(stages)})
+    return {"context": {"date": "2026-11-22", "num_cpus": 2}, "benchmarks": benchmarks}
+
+
+def trajectory_csv(path):
+    """A trajectory CSV (FORMATS.md column order) that swings across the valley while falling down it."""
+    cols = ["t", "x", "y", "cx", "cy", "cz", "wx", "wy", "wz", "r00", "r01", "r02", "r10", "r11", "r12",
+            "r20", "r21", "r22", "energy", "normal_force", "spin", "rotation_defect"]
+    t = np.linspace(0.0, T_END, 201)
+    x = 0.25 * np.cos(2.5 * t)
+    y = 0.4 * t ** 2
+    rows = np.zeros((t.size, len(cols)))
+    rows[:, 0], rows[:, 1], rows[:, 2] = t, x, y
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(",".join(cols) + "\n")
+        for row in rows:
+            f.write(",".join(f"{v:.17g}" for v in row) + "\n")

@@ -1,0 +1,162 @@
+// The runner's report: the quick preset's report against the schema, its
+// observed orders, its references, failures as data, and sharding.
+#include <gtest/gtest.h>
+
+#include "bench/lib/report.hpp"
+#include "problems/input_error.hpp"
+
+namespace rb {
+namespace {
+
+using json = nlohmann::json;
+
+SweepSpec quick_once() {
+  SweepSpec spec = preset("quick");
+  spec.repeats = 1;  // timings are not what these tests check
+  return spec;
+}
+
+json run_report(const SweepSpec& spec) {
+  const auto quiet = [](const std::string&) {};
+  const std::vector<SweepScene> scenes = prepare_scenes(spec);
+  const std::vector<RunRecord> runs = run_sweep(spec, scenes, quiet);
+  return make_report(spec, scenes, runs, run_stability(spec, quiet));
+}
+
+const json& quick_report() {
+  static const json report = run_report(quick_once());
+  return report;
+}
+
+void expect_keys(const json& j, std::initializer_list<std::pair<const char*, json::value_t>> keys, const std::string& where) {
+  for (const auto& [key, type] : keys) {
+    ASSERT_TRUE(j.contains(key)) << where << " lacks '" << key << "'";
+    if (type == json::value_t::number_float) {
+      EXPECT_TRUE(j[key].is_number() || j[key].is_null()) << where << "." << key;
+    } else {
+      EXPECT_EQ(j[key].type(), type) << where << "." << key;
+    }
+  }
+}
+
+TEST(Report, QuickPresetFollowsTheSchemaAndRoundTrips) {
+  const json& r = quick_report();
+  using t = json::value_t;
+  expect_keys(r, {{"schema", t::string}, {"created", t::string}, {"git", t::string}, {"machine", t::object},
+                  {"build", t::object}, {"runs", t::array}, {"orders", t::array}, {"references", t::array},
+                  {"stability", t::object}},
+              "report");
+  EXPECT_EQ(r["schema"], "rollbench.report/1");
+  expect_keys(r["machine"], {{"cpu", t::string}, {"cores", t::number_unsigned}, {"os", t::string}}, "machine");
+  expect_keys(r["build"], {{"compiler", t::string}, {"flags", t::string}, {"type", t::string}}, "build");
+  ASSERT_FALSE(r["runs"].empty());
+  for (const json& run : r["runs"]) {
+    expect_keys(run, {{"scene", t::string}, {"integrator", t::string}, {"family", t::string},
+                      {"declared_order", t::number_integer}, {"adaptive", t::boolean}, {"h", t::number_float},
+                      {"rtol", t::number_float}, {"atol", t::number_float}, {"status", t::string},
+                      {"stop_time", t::number_float}, {"steps", t::number_integer}, {"rejected", t::number_integer},
+                      {"rhs_evals", t::number_integer}, {"wall_s", t::object}, {"error", t::object},
+                      {"drift", t::object}, {"final", t::object}},
+                "run");
+    expect_keys(run["wall_s"], {{"median", t::number_float}, {"min", t::number_float}, {"max", t::number_float},
+                                {"samples", t::array}},
+                "wall_s");
+    expect_keys(run["error"], {{"reference", t::string}, {"contact", t::number_float}, {"centre", t::number_float},
+                               {"omega", t::number_float}, {"rotation", t::number_float}},
+                "error");
+    EXPECT_EQ(run["adaptive"].get<bool>(), run["h"].is_null());
+  }
+  const json again = json::parse(r.dump());
+  EXPECT_EQ(again, r);
+}
+
+double observed(const json& report, const std::string& scene, const std::string& integrator, const char* component) {
+  for (const json& o : report["orders"])
+    if (o["scene"] == scene && o["integrator"] == integrator)
+      return o["observed"][component].is_number() ? o["observed"][component].get<double>() : -1.0;
+  return -1.0;
+}
+
+TEST(Report, ObservedOrdersOfTheQuickPreset) {
+  const json& r = quick_report();
+  struct Expect { const char* method; const char* component; double order; };
+  for (const Expect e : {Expect{"euler", "contact", 1}, Expect{"exp-euler", "contact", 1}, Expect{"rk4", "contact", 4},
+                         Expect{"rkmk4", "contact", 4}, Expect{"rkmk4", "rotation", 4},
+                         Expect{"rkmk4-seminar", "rotation", 3}, Expect{"odeint-rk4", "contact", 4},
+                         Expect{"gsl-rk4", "contact", 4}})
+    EXPECT_NEAR(observed(r, "valley-sideways", e.method, e.component), e.order, 0.2) << e.method << " " << e.component;
+}
+
+TEST(Report, ReferencesAgreeWithTheirCrossCheck) {
+  const json& r = quick_report();
+  ASSERT_EQ(r["references"].size(), 2u);
+  for (const json& ref : r["references"]) {
+    EXPECT_LT(ref["error"].get<double>(), 1e-10) << ref["scene"];
+    if (ref["scene"] == "bowl-planar") {
+      EXPECT_EQ(ref["kind"], "exact");
+    }
+  }
+}
+
+TEST(Report, AFailingRunIsDataAndTheSweepGoesOn) {
+  SweepSpec spec = quick_once();
+  // a scene built to fail (lift-off over a crest) before an ordinary one
+  spec.scenes = {RB_TEST_DATA "/stop-lift-off.json", "valley-sideways"};
+  spec.integrators = {"rk4"};
+  spec.hs = {0.01};
+  spec.tols.clear();
+  const json r = run_report(spec);
+  ASSERT_EQ(r["runs"].size(), 2u);
+  const json& failed = r["runs"][0];
+  EXPECT_EQ(failed["scene"], "stop-lift-off");
+  EXPECT_EQ(failed["status"], "lift-off");
+  EXPECT_GT(failed["stop_time"].get<double>(), 0.0);
+  EXPECT_LT(failed["stop_time"].get<double>(), 2.0);
+  EXPECT_GT(failed["steps"].get<long>(), 0);
+  EXPECT_EQ(failed["rhs_evals"].get<long>(), 4 * failed["steps"].get<long>());
+  EXPECT_FALSE(failed["message"].get<std::string>().empty());
+  EXPECT_TRUE(failed["error"]["contact"].is_null());
+  // the reference failed the same way, and says so instead of stopping the sweep
+  EXPECT_EQ(r["references"][0]["kind"], "none");
+  EXPECT_NE(r["references"][0]["message"].get<std::string>().find("lift-off"), std::string::npos);
+  EXPECT_EQ(r["runs"][1]["status"], "ok");
+  EXPECT_TRUE(r["runs"][1]["error"]["contact"].is_number());
+}
+
+json without_timings(json r) {
+  for (const char* key : {"created", "machine"}) r.erase(key);
+  for (json& run : r["runs"]) run.erase("wall_s");
+  for (json& d : r["stability"]["drift"]) d.erase("wall_s");
+  return r;
+}
+
+TEST(Report, MergedShardsEqualTheUnshardedReport) {
+  SweepSpec spec = quick_once();
+  spec.repeats = 0;
+  const json whole = run_report(spec);
+  std::vector<json> shards;
+  for (int i = 0; i < 3; ++i) {
+    SweepSpec part = spec;
+    part.shard_index = i;
+    part.shard_count = 3;
+    shards.push_back(run_report(part));
+  }
+  EXPECT_EQ(without_timings(merge_reports(shards)), without_timings(whole));
+  shards[1]["options"]["h"] = {1.0};
+  EXPECT_THROW(merge_reports(shards), InputError);
+}
+
+TEST(Report, PresetsAndListsRejectBadInput) {
+  EXPECT_THROW(preset("fastest"), InputError);
+  EXPECT_EQ(parse_number_list("2^-2..2^-4", "h"), (std::vector<double>{0.25, 0.125, 0.0625}));
+  EXPECT_EQ(parse_number_list("0.1,1e-3", "h"), (std::vector<double>{0.1, 1e-3}));
+  try {
+    parse_number_list("0.1,abc", "h");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "'h': expected positive numbers separated by commas, got 'abc'");
+  }
+}
+
+}  // namespace
+}  // namespace rb

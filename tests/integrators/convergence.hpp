@@ -1,0 +1,59 @@
+#pragma once
+// Shared by the registry-wide tests: errors of a run against a reference
+// state and the observed order of a fixed-step method on one problem.
+#include <string>
+#include <vector>
+
+#include "bench/lib/order_fit.hpp"
+#include "integrators/integrator.hpp"
+#include "problems/so3.hpp"
+
+namespace rb::testing {
+
+struct EndErrors {
+  double contact;   // |alpha - alpha_ref|
+  double omega;     // |omega - omega_ref|
+  double rotation;  // angle of R_ref^T R after projection
+};
+
+inline EndErrors end_errors(const Problem& problem, const FlatState& y, const FlatState& ref) {
+  const RollingBall& m = problem.model();
+  const Vec3 w = m.omega_from_momentum(m.normal_at(y[kOffsetAlpha], y[kOffsetAlpha + 1]), Vec3(momentum_of(y)));
+  const Vec3 w_ref =
+      m.omega_from_momentum(m.normal_at(ref[kOffsetAlpha], ref[kOffsetAlpha + 1]), Vec3(momentum_of(ref)));
+  return {(contact_of(y) - contact_of(ref)).norm(), (w - w_ref).norm(),
+          rotation_angle_between(rotation_of(ref), rotation_of(y))};
+}
+
+struct Convergence {
+  std::vector<double> h, contact, omega, rotation;
+  OrderFit contact_fit, omega_fit, rotation_fit;
+};
+
+// Halves h from h0 while the contact error stays above 1e-12 and h >= h_min;
+// runs that fail (large h) are left out. Fits over errors below 1e-3.
+inline Convergence measure_convergence(const Integrator& method, const Problem& problem, double t_end,
+                                       const FlatState& ref, double h0 = 0.5, double h_min = 1e-4) {
+  Convergence c;
+  for (double h = h0; h >= h_min; h /= 2) {
+    RunOptions options;
+    options.t_end = t_end;
+    options.h = h;
+    const RunResult run = method.integrate(problem, options);
+    if (run.status != Status::ok) continue;
+    const EndErrors e = end_errors(problem, run.final_state, ref);
+    if (e.contact < 1e-3) {
+      c.h.push_back(h);
+      c.contact.push_back(e.contact);
+      c.omega.push_back(e.omega);
+      c.rotation.push_back(e.rotation);
+    }
+    if (e.contact < 1e-12) break;
+  }
+  c.contact_fit = fit_order(c.h, c.contact, 1e-13);
+  c.omega_fit = fit_order(c.h, c.omega, 1e-13);
+  c.rotation_fit = fit_order(c.h, c.rotation, 1e-13);
+  return c;
+}
+
+}  // namespace rb::testing

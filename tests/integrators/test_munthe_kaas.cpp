@@ -1,0 +1,120 @@
+// Conformance of the Lie-group methods: the same (v, alpha) trajectory as the
+// classical method with the same tableau (R never enters G), R on SO(3), and
+// the contrast with classical RK whose R drifts.
+#include <gtest/gtest.h>
+
+#include "integrators/munthe_kaas.hpp"
+#include "integrators/registry.hpp"
+#include "integrators/runge_kutta.hpp"
+#include "problems/scene.hpp"
+#include "tests/integrators/convergence.hpp"
+
+namespace rb {
+namespace {
+
+const Problem& valley() {
+  static const Problem problem = make_problem(load_scene("valley-sideways"));
+  return problem;
+}
+
+RunOptions every(double dt, double t_end, double h) {
+  RunOptions o;
+  o.t_end = t_end;
+  o.h = h;
+  for (int k = 1; k * dt < t_end - 1e-12; ++k) o.output_times.push_back(k * dt);
+  return o;
+}
+
+// Ralston's third-order method: a tableau the suite does not ship.
+Tableau ralston3() {
+  return Tableau("ralston3", 3, {0, 0, 0, 0.5, 0, 0, 0, 0.75, 0}, {2.0 / 9, 1.0 / 3, 4.0 / 9}, {0, 0.5, 0.75});
+}
+
+void expect_same_z_and_rotation_exact(const MuntheKaas& lie, const RungeKutta& classical) {
+  const RunOptions o = every(0.1, 2.0, 0.01);
+  const RunResult a = lie.integrate(valley(), o);
+  const RunResult b = classical.integrate(valley(), o);
+  ASSERT_EQ(a.status, Status::ok);
+  ASSERT_EQ(b.status, Status::ok);
+  ASSERT_EQ(a.output.y.size(), b.output.y.size());
+  for (std::size_t i = 0; i < a.output.y.size(); ++i) {
+    EXPECT_LT((z_of(a.output.y[i]) - z_of(b.output.y[i])).norm(), 1e-12) << lie.name() << " at t = " << a.output.t[i];
+    EXPECT_LT(rotation_defect(rotation_of(a.output.y[i])), 1e-13) << lie.name();
+  }
+  EXPECT_EQ(a.cost.rhs_evals, b.cost.rhs_evals);
+  EXPECT_EQ(a.cost.exp_evals, a.cost.steps);
+}
+
+TEST(MuntheKaas, EveryRegisteredLieMethodMatchesItsClassicalTwinInZ) {
+  int checked = 0;
+  for (const auto& integrator : registry()) {
+    const auto* lie = dynamic_cast<const MuntheKaas*>(integrator.get());
+    if (!lie) continue;
+    expect_same_z_and_rotation_exact(*lie, RungeKutta(lie->tableau()));
+    ++checked;
+  }
+  EXPECT_GE(checked, 6);
+}
+
+TEST(MuntheKaas, UserTableauPassesTheSameChecks) {
+  const MuntheKaas lie(ralston3(), "rkmk-ralston3");
+  const RungeKutta classical(ralston3());
+  expect_same_z_and_rotation_exact(lie, classical);
+  RunOptions fine;
+  fine.t_end = 1.0;
+  fine.h = 1e-4;
+  const FlatState ref = find_integrator("rkmk4").integrate(valley(), fine).final_state;
+  for (const Integrator* m : {static_cast<const Integrator*>(&lie), static_cast<const Integrator*>(&classical)}) {
+    const testing::Convergence c = testing::measure_convergence(*m, valley(), 1.0, ref);
+    EXPECT_NEAR(c.contact_fit.slope, 3.0, 0.2) << m->name();
+    EXPECT_NEAR(c.rotation_fit.slope, 3.0, 0.2) << m->name();
+  }
+}
+
+TEST(MuntheKaas, ExpEulerIsLieEuler) {
+  // one step by hand: R1 = exp(h hat(omega(z0))) R0, z1 = z0 + h G(z0)
+  const Problem& p = valley();
+  const double h = 0.01;
+  Vec3 omega;
+  ZState G;
+  const ZState z0 = z_of(p.y0());
+  p.lie_rhs(z0.data(), omega.data(), G.data());
+  RunOptions o;
+  o.t_end = h;
+  o.h = h;
+  const RunResult run = find_integrator("exp-euler").integrate(p, o);
+  EXPECT_LT((rotation_of(run.final_state) - so3_exp(h * omega) * rotation_of(p.y0())).norm(), 1e-15);
+  EXPECT_LT((z_of(run.final_state) - (z0 + h * G)).norm(), 1e-15);
+}
+
+// 10^6 steps on a bounded scene: R stays a rotation to rounding with rkmk4.
+TEST(MuntheKaas, Rkmk4KeepsRotationForAMillionSteps) {
+  const Problem bowl = make_problem(load_scene("bowl-3d"));
+  const RunOptions o = every(10.0, 1000.0, 1e-3);
+  const RunResult run = find_integrator("rkmk4").integrate(bowl, o);
+  ASSERT_EQ(run.status, Status::ok) << run.message;
+  EXPECT_EQ(run.cost.steps, 1'000'000);
+  double worst = 0.0;
+  for (const FlatState& y : run.output.y) worst = std::max(worst, rotation_defect(rotation_of(y)));
+  EXPECT_LT(worst, 1e-12);
+}
+
+// Classical RK lets R drift, and the drift grows with time: the contrast the
+// benchmark is about, documented by assertions.
+TEST(MuntheKaas, ClassicalMethodsDriftOffSO3AndTheDriftGrows) {
+  const Problem bowl = make_problem(load_scene("bowl-3d"));
+  struct Case { const char* name; double h; double min_final_defect; };
+  for (const Case c : {Case{"rk4", 0.02, 1e-9}, Case{"euler", 1e-3, 1e-3}}) {
+    const RunResult run = find_integrator(c.name).integrate(bowl, every(1.0, 100.0, c.h));
+    ASSERT_EQ(run.status, Status::ok) << c.name << ": " << run.message;
+    const double at_10 = rotation_defect(rotation_of(run.output.y[9]));
+    const double at_100 = rotation_defect(rotation_of(run.output.y.back()));
+    EXPECT_GT(at_100, c.min_final_defect) << c.name;
+    EXPECT_GT(at_100, 5.0 * at_10) << c.name << ": the defect does not grow";
+    const RunResult lie = find_integrator("rkmk4").integrate(bowl, every(1.0, 100.0, c.h));
+    EXPECT_LT(rotation_defect(rotation_of(lie.final_state)), 1e-13);
+  }
+}
+
+}  // namespace
+}  // namespace rb

@@ -1,0 +1,83 @@
+// The observed order of every registered fixed-step integrator, measured on
+// the seminar's default landscape with a sideways start: a new integrator is
+// checked here with no new test.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cctype>
+
+#include "problems/input_error.hpp"
+
+#include "integrators/registry.hpp"
+#include "problems/scene.hpp"
+#include "tests/integrators/convergence.hpp"
+
+namespace rb {
+namespace {
+
+constexpr double kTEnd = 1.0;
+
+const Problem& valley() {
+  static const Problem problem = make_problem(load_scene("valley-sideways"));
+  return problem;
+}
+
+// rkmk4 at h = 1e-4: its error (~1e-16) is far below every error fitted.
+const FlatState& reference() {
+  static const FlatState ref = [] {
+    RunOptions options;
+    options.t_end = kTEnd;
+    options.h = 1e-4;
+    return find_integrator("rkmk4").integrate(valley(), options).final_state;
+  }();
+  return ref;
+}
+
+std::vector<std::string> registered_names() {
+  std::vector<std::string> names;
+  for (const auto& integrator : registry()) names.push_back(integrator->name());
+  return names;
+}
+
+class RegistryOrder : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(RegistryOrder, ObservedOrderWithinPointTwoOfDeclared) {
+  const Integrator& method = find_integrator(GetParam());
+  if (method.adaptive()) GTEST_SKIP() << "adaptive: checked by tolerance proportionality";
+  const testing::Convergence c = testing::measure_convergence(method, valley(), kTEnd, reference());
+  ASSERT_GE(c.contact_fit.points, 3) << "too few points in the asymptotic range";
+  EXPECT_NEAR(c.contact_fit.slope, method.declared_order(), 0.2) << "contact point";
+  EXPECT_NEAR(c.omega_fit.slope, method.declared_order(), 0.2) << "omega";
+  EXPECT_NEAR(c.rotation_fit.slope, method.rotation_order(), 0.2) << "rotation";
+}
+
+INSTANTIATE_TEST_SUITE_P(AllRegistered, RegistryOrder, ::testing::ValuesIn(registered_names()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           std::string name = info.param;
+                           for (char& ch : name)
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           return name;
+                         });
+
+TEST(RegistryOrder, SeminarSignErrorCostsAnOrderInRotationOnly) {
+  const Integrator& seminar = find_integrator("rkmk4-seminar");
+  const testing::Convergence c = testing::measure_convergence(seminar, valley(), kTEnd, reference());
+  EXPECT_NEAR(c.rotation_fit.slope, 3.0, 0.2);
+  EXPECT_NEAR(c.contact_fit.slope, 4.0, 0.2);
+}
+
+TEST(Registry, NamesAreUniqueAndLookupFails) {
+  std::vector<std::string> names = registered_names();
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(std::adjacent_find(names.begin(), names.end()), names.end());
+  try {
+    find_integrator("rk5000");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "integrator");
+    EXPECT_STREQ(e.what(), "'integrator': unknown integrator 'rk5000' (`rollbench list` shows them all)");
+  }
+}
+
+}  // namespace
+}  // namespace rb
