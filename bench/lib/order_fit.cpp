@@ -48,12 +48,18 @@ double local_slope(const std::vector<std::pair<double, double>>& p, std::size_t 
 
 }  // namespace
 
-OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& error, double floor) {
-  std::vector<std::pair<double, double>> p;  // (log10 h, log10 error), by h ascending
+OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& error, double floor, double ceiling) {
+  std::vector<std::pair<double, double>> all;  // (h, error), by h ascending
   for (std::size_t i = 0; i < h.size() && i < error.size(); ++i)
-    if (std::isfinite(error[i]) && error[i] > 10.0 * floor && error[i] > 0.0 && h[i] > 0.0)
-      p.emplace_back(std::log10(h[i]), std::log10(error[i]));
-  std::sort(p.begin(), p.end());
+    if (h[i] > 0.0) all.emplace_back(h[i], error[i]);
+  std::sort(all.begin(), all.end());
+  // from the smallest step up, until the error passes the ceiling: a lucky
+  // small error at a larger step beyond that is not asymptotic
+  std::vector<std::pair<double, double>> p;  // (log10 h, log10 error)
+  for (const auto& [step, e] : all) {
+    if (e > ceiling) break;
+    if (std::isfinite(e) && e > 10.0 * floor && e > 0.0) p.emplace_back(std::log10(step), std::log10(e));
+  }
   OrderFit fit;
   fit.slope = std::numeric_limits<double>::quiet_NaN();
   if (p.size() < 2) return fit;

@@ -16,10 +16,13 @@ struct OrderFit {
   int points = 0;
 };
 
-// h and error are paired; points with a non-finite error, or an error below
-// 10 * floor, are left out. Then, while more than three points remain, the
+// h and error are paired. Points with a non-finite error or an error below
+// 10 * floor are left out, and so is every point from the smallest h whose
+// error passes ceiling upward (pre-asymptotic: a rotation angle or a length
+// of the scene's unit size has nothing left to converge). Then, while more than three points remain, the
 // end whose local slope disagrees most (by more than 0.3 times the slope of
 // the rest, at least 0.15) with the rest is dropped.
-OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& error, double floor = 0.0);
+OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& error, double floor = 0.0,
+                   double ceiling = 0.1);
 
 }  // namespace rb

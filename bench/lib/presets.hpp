@@ -20,6 +20,7 @@ struct StabilitySpec {
   double search_t_end = 10.0;
   double contact_threshold = 1e-2;  // |alpha - alpha_ref| at the end
   double energy_threshold = 1e-2;   // max |H - H0| / (m g0 r) over the run
+  double rotation_threshold = 1e-2; // max ||R^T R - I||_F over the run (R blows up long before the state)
 };
 
 struct SweepSpec {

@@ -18,7 +18,9 @@ nlohmann::json make_report(const SweepSpec& spec, const std::vector<SweepScene>&
                            const std::vector<RunRecord>& runs, const StabilityResults& stability);
 
 // The "orders" entries for the runs of a report: per (scene, integrator) of a
-// fixed-step method, the slope of log error on log h per component.
+// fixed-step method, the slope of log error on log h per component, a
+// verdict per component ("as declared" within 0.2, "higher", "lower") and
+// pass = no fitted component is lower than declared - 0.2 (null: no fit).
 nlohmann::json fit_orders(const nlohmann::json& runs, const nlohmann::json& references);
 
 // Joins shard reports: runs, references and stability records in sweep

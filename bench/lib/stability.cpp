@@ -65,18 +65,20 @@ StableStepRecord stable_step_search(const SweepScene& s, const Integrator& m, co
   r.family = m.family();
   r.contact_threshold = st.contact_threshold;
   r.energy_threshold = st.energy_threshold;
+  r.rotation_threshold = st.rotation_threshold;
   const BallParams& b = s.problem.model().params();
   const double energy_unit = b.mass * b.gravity * b.radius;
   const double e0 = s.problem.model().derived(s.problem.y0()).energy;
   for (double h = st.search_h_max; h >= st.search_h_min; h /= 2) {
     SweepTask task{0, 0, m.name(), h, kNaN};
     const RunRecord run = run_task(s, task, 5'000'000);
-    StableStepTry t{h, run.status, run.error.contact, kNaN};
+    StableStepTry t{h, run.status, run.error.contact, kNaN, run.rotation_drift};
     if (run.status == Status::ok) t.energy_error = std::max(run.energy_drift, std::abs(run.final_energy - e0)) / energy_unit;
     // an error below the reference's floor is as good as zero
     const double contact = std::isnan(run.error.contact) && run.status == Status::ok ? 0.0 : run.error.contact;
     r.tried.push_back(t);
-    if (run.status == Status::ok && contact <= st.contact_threshold && t.energy_error <= st.energy_threshold) {
+    if (run.status == Status::ok && contact <= st.contact_threshold && t.energy_error <= st.energy_threshold &&
+        t.rotation_defect <= st.rotation_threshold) {
       r.h = h;
       break;
     }

@@ -27,13 +27,14 @@ struct StableStepTry {
   Status status;
   double contact_error;  // NaN when the run failed
   double energy_error;   // max |H - H0| over the run, in units of m g0 r
+  double rotation_defect;  // max ||R^T R - I||_F over the run
 };
 
 struct StableStepRecord {
   std::size_t index = 0;
   std::string scene, integrator, family;
   double h = kNaN;  // the largest stable step; NaN when none was found
-  double contact_threshold = 0.0, energy_threshold = 0.0;
+  double contact_threshold = 0.0, energy_threshold = 0.0, rotation_threshold = 0.0;
   std::vector<StableStepTry> tried;
 };
 

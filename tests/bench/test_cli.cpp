@@ -1,0 +1,132 @@
+// The rollbench command line as a user meets it: exit codes (0 ok, 2 bad
+// input naming the key or column, 3 a run stopped early), the CSV it writes
+// and the messages on standard error.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+#include "integrators/registry.hpp"
+
+namespace rb {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int code;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+Outcome rollbench(const std::string& args) {
+  const fs::path dir = fs::temp_directory_path() / ("rb-cli-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string command = std::string(RB_ROLLBENCH_EXE) + " " + args + " > " + (dir / "out").string() + " 2> " +
+                              (dir / "err").string();
+  const int status = std::system(command.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "out"), slurp(dir / "err")};
+}
+
+fs::path temp_file(const std::string& name) {
+  return fs::temp_directory_path() / ("rb-cli-" + std::to_string(::getpid()) + "-" + name);
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::stringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+TEST(Cli, ListShowsEveryRegisteredIntegratorAndTheScenes) {
+  const Outcome o = rollbench("list");
+  ASSERT_EQ(o.code, 0) << o.err;
+  for (const auto& m : registry()) EXPECT_NE(o.out.find("  " + m->name() + " "), std::string::npos) << m->name();
+  EXPECT_NE(o.out.find("valley-sideways"), std::string::npos);
+  EXPECT_NE(o.out.find("bowl-planar"), std::string::npos);
+}
+
+TEST(Cli, TrajectoryWritesTheCsvOfFormats) {
+  const fs::path csv = temp_file("ok.csv");
+  const Outcome o = rollbench("trajectory valley-sideways --integrator rkmk4 --h 0.01 --dt-out 0.05 --t-end 1 --out " +
+                              csv.string());
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::vector<std::string> rows = lines_of(slurp(csv));
+  ASSERT_EQ(rows.size(), 1u + 21u);  // header, t = 0, 0.05, ..., 1
+  EXPECT_EQ(rows[0],
+            "t,x,y,cx,cy,cz,wx,wy,wz,r00,r01,r02,r10,r11,r12,r20,r21,r22,energy,normal_force,spin,rotation_defect");
+  EXPECT_EQ(rows.back().substr(0, 2), "1,");
+  // 22 columns, full precision
+  EXPECT_EQ(std::count(rows[5].begin(), rows[5].end(), ','), 21);
+  EXPECT_NE(o.out.find("ok at t = 1"), std::string::npos);
+}
+
+TEST(Cli, AdaptiveMethodsTakeTolerances) {
+  const fs::path csv = temp_file("adaptive.csv");
+  const Outcome o = rollbench("trajectory plane --integrator odeint-dopri5-adaptive --rtol 1e-8 --atol 1e-8 --out " +
+                              csv.string());
+  EXPECT_EQ(o.code, 0) << o.err;
+  const Outcome missing = rollbench("trajectory plane --integrator odeint-dopri5-adaptive --out " + csv.string());
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.err.find("'rtol'"), std::string::npos) << missing.err;
+}
+
+TEST(Cli, BadInputExitsWithTwoAndNamesThePlace) {
+  const fs::path scene = temp_file("bad.json");
+  std::ofstream(scene) << R"({"name": "bad", "landscape": "x + sin(y", "ball": {"radius": 0.1, "mass": 1},
+    "start": {"contact": [0, 0], "omega": [0, 0, 0]}, "t_end": 1})";
+  const fs::path csv = temp_file("bad.csv");
+  Outcome o = rollbench("trajectory " + scene.string() + " --integrator rk4 --h 0.01 --out " + csv.string());
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("'landscape' column 8"), std::string::npos) << o.err;
+
+  o = rollbench("trajectory plane --integrator rk5000 --h 0.01 --out " + csv.string());
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("'integrator': unknown integrator 'rk5000'"), std::string::npos) << o.err;
+
+  o = rollbench("trajectory plane --integrator rk4 --h 0.1 --dt-out 0.01 --out " + csv.string());
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("'dt-out'"), std::string::npos) << o.err;
+
+  o = rollbench("trajectory plane --integrator rk4 --h abc --out " + csv.string());
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("--h"), std::string::npos) << o.err;
+
+  o = rollbench("run --preset quick --shard 3/2 --out " + temp_file("r.json").string());
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("'shard'"), std::string::npos) << o.err;
+}
+
+TEST(Cli, ARunThatStopsEarlyExitsWithThreeAndKeepsItsRows) {
+  const fs::path csv = temp_file("lift.csv");
+  const Outcome o = rollbench("trajectory " RB_TEST_DATA "/stop-lift-off.json --integrator rkmk4 --h 0.001 --out " +
+                              csv.string());
+  EXPECT_EQ(o.code, 3);
+  EXPECT_NE(o.err.find("lift-off"), std::string::npos) << o.err;
+  const std::vector<std::string> rows = lines_of(slurp(csv));
+  EXPECT_GT(rows.size(), 10u);    // the rows before the stop are kept
+  EXPECT_LT(rows.size(), 202u);   // and none after it
+}
+
+TEST(Cli, RunWritesAReportAndAShortTable) {
+  const fs::path report = temp_file("report.json");
+  const Outcome o = rollbench("run --preset quick --scenes plane --integrators rk4,rkmk4 --h 0.1,0.05,0.025 --repeats 1 "
+                              "--out " + report.string());
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.out.find("rkmk4"), std::string::npos);
+  EXPECT_NE(o.err.find("reference of plane: exact"), std::string::npos) << o.err;
+  EXPECT_NE(slurp(report).find("\"schema\": \"rollbench.report/1\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace rb
