@@ -133,6 +133,8 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
     // a step shortened to land says little about the next one: keep the
     // controller's previous proposal when it was larger
     h = lands ? std::max(h_next, h) : h_next;
+    // a step to an invalid state ends the run at the last valid one; no
+    // output is interpolated towards it
     stepper.state(y_new);
     const Validity v = problem.check_step(y_new);
     if (v.status != Status::ok) return stop(v.status, v.reason, y, t_old);

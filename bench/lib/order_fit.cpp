@@ -40,15 +40,14 @@ double t95(int dof) {
   return dof <= 10 ? table[dof - 1] : 1.96 + 2.5 / dof;
 }
 
-constexpr std::size_t kMaxFitPoints = 5;
-
 double local_slope(const std::vector<std::pair<double, double>>& p, std::size_t i) {
   return (p[i + 1].second - p[i].second) / (p[i + 1].first - p[i].first);
 }
 
 }  // namespace
 
-OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& error, double floor, double ceiling) {
+OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& error, double floor, double ceiling,
+                   std::size_t max_points) {
   std::vector<std::pair<double, double>> all;  // (h, error), by h ascending
   for (std::size_t i = 0; i < h.size() && i < error.size(); ++i)
     if (h[i] > 0.0) all.emplace_back(h[i], error[i]);
@@ -82,7 +81,8 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   }
   // the asymptotic range is where h is small: of a long consistent run keep
   // the smallest steps, so that pre-asymptotic curvature does not bias it
-  if (hi - lo > kMaxFitPoints) hi = lo + kMaxFitPoints;
+  max_points = std::max<std::size_t>(2, max_points);
+  if (hi - lo > max_points) hi = lo + max_points;
   const Line l = least_squares(p, lo, hi);
   fit.slope = l.slope;
   fit.intercept = l.intercept;

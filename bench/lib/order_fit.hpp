@@ -19,10 +19,12 @@ struct OrderFit {
 // h and error are paired. Points with a non-finite error or an error below
 // 10 * floor are left out, and so is every point from the smallest h whose
 // error passes ceiling upward (pre-asymptotic: a rotation angle or a length
-// of the scene's unit size has nothing left to converge). Then, while more than three points remain, the
-// end whose local slope disagrees most (by more than 0.3 times the slope of
-// the rest, at least 0.15) with the rest is dropped.
+// of the scene's unit size has nothing left to converge). Then, while more
+// than three points remain, the end whose local slope disagrees most (by
+// more than 0.3 times the slope of the rest, at least 0.15) with the rest is
+// dropped. Of what remains, at most max_points of the smallest steps are
+// fitted: the asymptotic range is where h is small.
 OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& error, double floor = 0.0,
-                   double ceiling = 0.1);
+                   double ceiling = 0.1, std::size_t max_points = 5);
 
 }  // namespace rb

