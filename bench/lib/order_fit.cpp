@@ -10,7 +10,7 @@ namespace rb {
 namespace {
 
 struct Line {
-  double slope, intercept, r2, se_slope;
+  double slope, intercept, r2, se_slope, rms;
 };
 
 // ordinary least squares of y on x
@@ -27,9 +27,15 @@ Line least_squares(const std::vector<std::pair<double, double>>& p, std::size_t 
   Line l;
   l.slope = sxy / sxx;
   l.intercept = my - l.slope * mx;
-  const double sse = std::max(0.0, syy - l.slope * sxy);
+  // residuals summed directly: syy - slope sxy cancels to noise on a good fit
+  double sse = 0;
+  for (std::size_t i = lo; i < hi; ++i) {
+    const double r = p[i].second - (l.intercept + l.slope * p[i].first);
+    sse += r * r;
+  }
   l.r2 = syy > 0 ? 1.0 - sse / syy : 1.0;
   l.se_slope = n > 2 ? std::sqrt(sse / (n - 2) / sxx) : 0.0;
+  l.rms = std::sqrt(sse / n);
   return l;
 }
 
@@ -87,6 +93,7 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   fit.slope = l.slope;
   fit.intercept = l.intercept;
   fit.r2 = l.r2;
+  fit.residual = l.rms;
   fit.points = static_cast<int>(hi - lo);
   fit.slope_ci95 = t95(fit.points - 2) * l.se_slope;
   fit.h_min = std::pow(10.0, p[lo].first);

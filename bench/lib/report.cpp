@@ -179,7 +179,8 @@ json fit_orders(const json& runs, const json& references) {
       if (fit.points >= 3) {
         observed[c] = fit.slope;
         ci95[c] = fit.slope_ci95;
-        fits[c] = {{"h_min", fit.h_min}, {"h_max", fit.h_max}, {"points", fit.points}, {"r2", fit.r2}};
+        fits[c] = {{"h_min", fit.h_min}, {"h_max", fit.h_max}, {"points", fit.points}, {"r2", fit.r2},
+                   {"residual", fit.residual}};
         const int declared = std::string(c) == "rotation" ? first.at("declared_rotation_order").get<int>()
                                                           : first.at("declared_order").get<int>();
         // a higher order than declared is no failure: for odd-order flat-view

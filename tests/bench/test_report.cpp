@@ -123,6 +123,19 @@ TEST(Report, AFailingRunIsDataAndTheSweepGoesOn) {
   EXPECT_TRUE(r["runs"][1]["error"]["contact"].is_number());
 }
 
+TEST(Report, EveryShippedSceneHasAReferenceThatAgreesWithItsCrossCheck) {
+  SweepSpec spec = preset("default");
+  spec.scenes.clear();  // all shipped scenes
+  for (const SweepScene& s : prepare_scenes(spec)) {
+    ASSERT_NE(s.reference.kind, "none") << s.scene.name << ": " << s.reference.message;
+    EXPECT_LT(s.reference.error, 1e-10) << s.scene.name;
+    EXPECT_EQ(s.reference.points.size(), s.times.size()) << s.scene.name;
+    // closed-form scenes are measured against the closed form, which the
+    // computed solution confirms to the same 1e-10
+    EXPECT_EQ(s.reference.kind, s.problem.exact() ? "exact" : "computed") << s.scene.name;
+  }
+}
+
 json without_timings(json r) {
   for (const char* key : {"created", "machine"}) r.erase(key);
   for (json& run : r["runs"]) run.erase("wall_s");
