@@ -2,6 +2,7 @@
 // turns errors into messages and exit codes (0 ok, 2 bad input, 3 a run that
 // stopped early).
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -31,7 +32,8 @@ int run_list() {
 
 struct TrajectoryArgs {
   std::string scene, integrator, out;
-  double h = 0.0, rtol = 0.0, atol = 0.0, dt_out = 0.0, t_end = 0.0;  // dt_out 0: the default
+  // NaN: not given, the default applies; anything given is checked
+  double h = 0.0, rtol = 0.0, atol = 0.0, dt_out = std::nan(""), t_end = std::nan("");
 };
 
 int run_trajectory(const TrajectoryArgs& a) {
@@ -39,7 +41,13 @@ int run_trajectory(const TrajectoryArgs& a) {
   const rb::Problem problem = rb::make_problem(scene);
   const rb::Integrator& integrator = rb::find_integrator(a.integrator);
   rb::RunOptions options;
-  options.t_end = a.t_end > 0.0 ? a.t_end : problem.t_end();
+  if (!std::isnan(a.t_end) && !(a.t_end > 0.0 && std::isfinite(a.t_end)))
+    throw rb::InputError("the end time must be a finite number > 0", "t-end");
+  if (!std::isnan(a.dt_out) && !(a.dt_out > 0.0 && std::isfinite(a.dt_out)))
+    throw rb::InputError("the output spacing must be a finite number > 0", "dt-out");
+  if (!integrator.adaptive() && !std::isfinite(a.h))
+    throw rb::InputError("the step must be a finite number > 0", "h");
+  options.t_end = std::isnan(a.t_end) ? problem.t_end() : a.t_end;
   options.h = a.h;
   options.rtol = a.rtol;
   options.atol = a.atol;
@@ -49,9 +57,9 @@ int run_trajectory(const TrajectoryArgs& a) {
     throw rb::InputError("'" + integrator.name() + "' is adaptive and needs --rtol or --atol > 0", "rtol");
   // a fixed-step method lands on every output, so outputs closer than h
   // would silently shorten its step: that is refused, not done
-  if (!integrator.adaptive() && a.dt_out > 0.0 && a.dt_out < a.h)
+  if (!integrator.adaptive() && a.dt_out < a.h)
     throw rb::InputError("the output spacing must not be smaller than the step h = " + std::to_string(a.h), "dt-out");
-  const double dt_out = a.dt_out > 0.0 ? a.dt_out : std::max(0.01, a.h);
+  const double dt_out = std::isnan(a.dt_out) ? std::max(0.01, a.h) : a.dt_out;
   options.output_times = rb::equally_spaced_outputs(dt_out, options.t_end);
 
   std::ofstream out(a.out);

@@ -2,12 +2,74 @@
 // The loop every fixed-step method shares: uniform steps of about h that land
 // exactly on each output time, the per-step validity check, the full check at
 // outputs, the step budget, and the bookkeeping of a run that stops early.
+#include <array>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 #include "integrators/integrator.hpp"
+#include "integrators/tableau.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {
+
+// A tableau's non-zero coefficients, gathered once per run so that the step
+// loops of the tableau methods (runge_kutta.cpp, munthe_kaas.cpp) skip the
+// zeros without testing them and read no std::vector in the step.
+struct StageTerms {
+  struct Row {
+    int count = 0;                          // non-zero terms
+    std::array<int, kMaxStages> index{};    // j of each term, increasing
+    std::array<double, kMaxStages> coeff{}; // a_ij (or b_j) of each term
+    void add(int j, double value) {
+      if (value == 0.0) return;
+      index[static_cast<std::size_t>(count)] = j;
+      coeff[static_cast<std::size_t>(count)] = value;
+      ++count;
+    }
+    // out = base + h c_0 k[j_0] + h c_1 k[j_1] + ...: for up to four terms
+    // one pass over the vector with the sums in registers, instead of one
+    // pass per term through memory; the same additions in the same order.
+    // out must not be one of the k. Inlined: a call would pass the sum
+    // through memory once more.
+    template <class V, class K>
+    [[gnu::always_inline]] void sum(V& out, const V& base, double h, const K& k) const {
+      const auto term = [&](std::size_t n) { return (h * coeff[n]) * k[static_cast<std::size_t>(index[n])]; };
+      switch (count) {
+        case 0: out = base; break;
+        case 1: out.noalias() = base + term(0); break;
+        case 2: out.noalias() = base + term(0) + term(1); break;
+        case 3: out.noalias() = base + term(0) + term(1) + term(2); break;
+        default:
+          out.noalias() = base + term(0) + term(1) + term(2) + term(3);
+          for (std::size_t n = 4; n < static_cast<std::size_t>(count); ++n) out += term(n);
+      }
+    }
+    // The same without a base: h c_0 k[j_0] + h c_1 k[j_1] + ... (0 if none).
+    template <class V, class K>
+    [[gnu::always_inline]] void sum(V& out, double h, const K& k) const {
+      const auto term = [&](std::size_t n) { return (h * coeff[n]) * k[static_cast<std::size_t>(index[n])]; };
+      switch (count) {
+        case 0: out.setZero(); break;
+        case 1: out.noalias() = term(0); break;
+        case 2: out.noalias() = term(0) + term(1); break;
+        case 3: out.noalias() = term(0) + term(1) + term(2); break;
+        default:
+          out.noalias() = term(0) + term(1) + term(2) + term(3);
+          for (std::size_t n = 4; n < static_cast<std::size_t>(count); ++n) out += term(n);
+      }
+    }
+  };
+  int stages;
+  std::array<Row, kMaxStages> a;  // row i: the terms of stage i
+  Row b;                          // the weights
+
+  explicit StageTerms(const Tableau& tableau) : stages(tableau.stages()) {
+    for (int i = 0; i < stages; ++i)
+      for (int j = 0; j < i; ++j) a[static_cast<std::size_t>(i)].add(j, tableau.a(i, j));
+    for (int j = 0; j < stages; ++j) b.add(j, tableau.b(j));
+  }
+};
 
 // The output times of a run: options.output_times with t_end appended when
 // missing. Throws InputError when they are not increasing within (0, t_end].
@@ -20,9 +82,11 @@ inline double t_end_of(const Problem& problem, const RunOptions& options) {
 
 // Runs step(y, t, h, cost) repeatedly. step advances y in place from t to
 // t + h and adds its own counts (rhs_evals, exp_evals, ...) to cost; the
-// driver counts steps. Between two outputs t_a < t_b it takes
-// n = ceil((t_b - t_a) / h) equal steps, so h is kept exactly when the output
-// spacing is a multiple of h.
+// driver counts steps. A step may instead take (y, next, t, h, cost) and
+// write the state at t + h into next, leaving y as it is: that saves copying
+// the state twice a step on the critical path of a cheap step. Between two
+// outputs t_a < t_b it takes n = ceil((t_b - t_a) / h) equal steps, so h is
+// kept exactly when the output spacing is a multiple of h.
 template <class StepFn>
 RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, StepFn&& step) {
   if (!(options.h > 0.0) || !std::isfinite(options.h))
@@ -31,7 +95,10 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
   RunResult run;
   run.output.t.reserve(outputs.size());
   run.output.y.reserve(outputs.size());
-  FlatState y = problem.y0();
+  // the current state and the next, swapped after each accepted step
+  std::array<FlatState, 2> states = {problem.y0(), FlatState()};
+  FlatState* y = &states[0];
+  FlatState* next = &states[1];
   double t = 0.0;
   auto stop = [&](const Validity& v, const FlatState& last_valid, double t_valid) {
     run.status = v.status;
@@ -43,26 +110,30 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
   for (const double t_out : outputs) {
     const double span = t_out - t;
     const double n_real = std::ceil(span / options.h * (1.0 - 1e-12));
-    if (n_real > 1e15) return stop({Status::max_steps, "the step count overflows"}, y, t);
+    if (n_real > 1e15) return stop({Status::max_steps, "the step count overflows"}, *y, t);
     const long n = std::max(1L, static_cast<long>(n_real));
     const double h = span / static_cast<double>(n);
     const double t_start = t;
     for (long i = 0; i < n; ++i) {
       if (run.cost.steps + run.cost.rejected >= options.max_steps)
-        return stop({Status::max_steps, "reached max_steps = " + std::to_string(options.max_steps)}, y, t);
-      FlatState next = y;
-      step(next, t, h, run.cost);
+        return stop({Status::max_steps, "reached max_steps = " + std::to_string(options.max_steps)}, *y, t);
+      if constexpr (std::is_invocable_v<StepFn&, const FlatState&, FlatState&, double, double, Cost&>) {
+        step(std::as_const(*y), *next, t, h, run.cost);
+      } else {
+        *next = *y;
+        step(*next, t, h, run.cost);
+      }
       ++run.cost.steps;
-      const Validity v = problem.check_step(next);
-      if (v.status != Status::ok) return stop(v, y, t);
-      y = next;
+      const Validity v = problem.check_step(*next);
+      if (v.status != Status::ok) return stop(v, *y, t);
+      std::swap(y, next);
       t = (i + 1 == n) ? t_out : t_start + static_cast<double>(i + 1) * h;
     }
-    const Validity v = problem.check_full(y);
-    if (v.status != Status::ok) return stop(v, y, t);
-    run.output.push(t, y);
+    const Validity v = problem.check_full(*y);
+    if (v.status != Status::ok) return stop(v, *y, t);
+    run.output.push(t, *y);
   }
-  run.final_state = y;
+  run.final_state = *y;
   run.stop_time = t;
   return run;
 }

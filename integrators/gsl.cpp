@@ -11,6 +11,7 @@
 #include <memory>
 #include <sstream>
 
+#include "integrators/adaptive.hpp"
 #include "integrators/fixed_step.hpp"
 #include "problems/input_error.hpp"
 #include "problems/jacobian.hpp"
@@ -268,17 +269,11 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
   if (!(options.h >= 0.0) || !std::isfinite(options.h))
     throw InputError("the initial step h must be a finite number >= 0 (0 chooses it)", "h");
   const std::vector<double> outputs = output_times_of(problem, options);
-  const double h0 = options.h > 0.0 ? options.h : 1e-3 * outputs.back();
-  const DriverPtr driver(
-      gsl_odeiv2_driver_alloc_standard_new(&sys, info.type(), h0, options.atol, options.rtol, 1.0, 0.0));
-  if (!driver) return allocation_failure(problem, stepper);
-  gsl_odeiv2_evolve* evolve = driver->e;
-
   RunResult run;
   run.output.t.reserve(outputs.size());
   run.output.y.reserve(outputs.size());
   FlatState y = problem.y0();
-  double t = 0.0, h = h0;
+  double t = 0.0;
   auto stop = [&](const Validity& v, const FlatState& last_valid, double t_valid) {
     run.status = v.status;
     run.message = v.reason;
@@ -286,6 +281,15 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
     run.stop_time = t_valid;
     return run;
   };
+  // GSL's controller would accept steps at a tolerance below rounding (its
+  // error estimate is noise there): refuse it up front, as odeint's adapters do
+  if (const Validity v = attainable({options.rtol, options.atol}, y); v.status != Status::ok) return stop(v, y, t);
+  const double h0 = options.h > 0.0 ? options.h : 1e-3 * outputs.back();
+  double h = h0;
+  const DriverPtr driver(
+      gsl_odeiv2_driver_alloc_standard_new(&sys, info.type(), h0, options.atol, options.rtol, 1.0, 0.0));
+  if (!driver) return allocation_failure(problem, stepper);
+  gsl_odeiv2_evolve* evolve = driver->e;
   for (const double t_out : outputs) {
     while (t < t_out) {
       // the budget is checked between accepted steps; the rejections inside

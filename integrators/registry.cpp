@@ -1,11 +1,14 @@
 #include "integrators/registry.hpp"
 
+#include "integrators/baselines.hpp"
 #include "integrators/gsl.hpp"
 #include "integrators/explicit_midpoint.hpp"
 #include "integrators/munthe_kaas.hpp"
+#include "integrators/munthe_kaas_adaptive.hpp"
 #include "integrators/odeint.hpp"
 #include "integrators/runge_kutta.hpp"
 #include "integrators/tableaus.hpp"
+#include "integrators/tableaus_high_order.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {
@@ -33,6 +36,19 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   add(std::make_unique<MuntheKaas>(t::rk4(), "rkmk4"));
   add(std::make_unique<MuntheKaas>(t::rk4(), "rkmk4-series", D::truncated));
   add(std::make_unique<MuntheKaas>(t::rk4(), "rkmk4-seminar", D::seminar));
+
+  // --- lie-group adaptive and baselines ---
+  // fixed-step RKMK at high order (what order buys), adaptive RKMK on
+  // embedded pairs (what adaptivity buys), and the practitioners' fixes
+  add(std::make_unique<MuntheKaas>(t::dormand_prince5(), "rkmk5"));
+  add(std::make_unique<MuntheKaas>(t::fehlberg8(), "rkmk8"));
+  add(std::make_unique<MuntheKaasAdaptive>(pairs::bogacki_shampine32(), "rkmk-bs32-adaptive"));
+  add(std::make_unique<MuntheKaasAdaptive>(pairs::dormand_prince54(), "rkmk-dp54-adaptive"));
+  add(std::make_unique<MuntheKaasAdaptive>(pairs::dormand_prince853(), "rkmk-dp853-adaptive"));
+  add(std::make_unique<MuntheKaasAdaptive>(pairs::fehlberg78(), "rkmk-f78-adaptive"));
+  add(std::make_unique<Rk4Projected>());
+  add(std::make_unique<Rk4Quaternion>());
+  // --- end lie-group adaptive and baselines ---
 
   // --- odeint --- (Boost.Odeint steppers on the flat view)
   add(odeint_euler());

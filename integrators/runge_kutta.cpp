@@ -14,22 +14,51 @@ std::string RungeKutta::description() const {
          " stages) on the flat view";
 }
 
-RunResult RungeKutta::integrate(const Problem& problem, const RunOptions& options) const {
-  const Tableau& tab = tableau_;
-  const int s = tab.stages();
-  std::array<FlatState, kMaxStages> k;
-  auto step = [&](FlatState& y, double /*t*/, double h, Cost& cost) {
-    for (int i = 0; i < s; ++i) {
-      FlatState Y = y;
-      for (int j = 0; j < i; ++j)
-        if (tab.a(i, j) != 0.0) Y += (h * tab.a(i, j)) * k[j];
-      problem.flat_rhs(Y.data(), k[i].data());
+namespace {
+
+// One step of an explicit tableau with S stages, S = 0 for any number. With S
+// known the stage loop unrolls around the inlined right-hand side, and the
+// compiler schedules each stage's sum into the tail of the evaluation before
+// it (about a tenth of an RK4 step on valley-sideways).
+template <int S>
+struct RkStep {
+  const Problem& problem;
+  const StageTerms& terms;
+  std::array<FlatState, kMaxStages>& k;
+  FlatState& Y;
+
+  void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost) const {
+    const int stages = S > 0 ? S : terms.stages;
+    for (int i = 0; i < stages; ++i) {
+      const StageTerms::Row& row = terms.a[static_cast<std::size_t>(i)];
+      // the stage's state, y + h a_i0 k_0 + h a_i1 k_1 + ... (the non-zero
+      // terms); with none (always the first stage) y itself, uncopied
+      const FlatState* at = &y;
+      if (row.count > 0) {
+        row.sum(Y, y, h, k);
+        at = &Y;
+      }
+      problem.flat_rhs(at->data(), k[static_cast<std::size_t>(i)].data());
     }
-    for (int i = 0; i < s; ++i)
-      if (tab.b(i) != 0.0) y += (h * tab.b(i)) * k[i];
-    cost.rhs_evals += s;
-  };
-  return drive_fixed_step(problem, options, step);
+    terms.b.sum(next, y, h, k);
+    cost.rhs_evals += stages;
+  }
+};
+
+}  // namespace
+
+RunResult RungeKutta::integrate(const Problem& problem, const RunOptions& options) const {
+  const StageTerms terms(tableau_);
+  std::array<FlatState, kMaxStages> k;
+  FlatState Y;
+  // the registry's tableaus have 1 to 4 stages, the larger ones go generic
+  switch (terms.stages) {
+    case 1: return drive_fixed_step(problem, options, RkStep<1>{problem, terms, k, Y});
+    case 2: return drive_fixed_step(problem, options, RkStep<2>{problem, terms, k, Y});
+    case 3: return drive_fixed_step(problem, options, RkStep<3>{problem, terms, k, Y});
+    case 4: return drive_fixed_step(problem, options, RkStep<4>{problem, terms, k, Y});
+    default: return drive_fixed_step(problem, options, RkStep<0>{problem, terms, k, Y});
+  }
 }
 
 }  // namespace rb

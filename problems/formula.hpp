@@ -7,6 +7,10 @@
 // per instruction, on a fixed-size stack array. Constant sub-expressions
 // (numbers, pi, e, params) are folded at compile time, and a constant operand
 // of a binary op becomes an immediate of that op.
+//
+// For Jet2<double>, the step loop's case, the program is also lowered once to
+// a FormulaTape (formula_tape.hpp), straight-line scalar code that runs the
+// jet ops' own double operations, minus those whose result is known.
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -14,8 +18,10 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
+#include "problems/formula_tape.hpp"
 #include "problems/input_error.hpp"
 #include "problems/jet.hpp"
 
@@ -115,9 +121,24 @@ class Formula {
   // (Eigen::AutoDiffScalar). Outside the formula's domain (sqrt of a negative,
   // log of 0) the parts are simply non-finite; never throws.
   template <class T>
-  Jet2<T> eval(const T& x, const T& y) const {
+  [[gnu::always_inline]] Jet2<T> eval(const T& x, const T& y) const {
+    if constexpr (std::is_same_v<T, double>) {
+      if (tape_.usable()) return tape_.full.run(x, y);
+    }
     if (max_stack_ <= kSmallStack) return run<T, kSmallStack>(x, y);
     return run<T, kMaxStack>(x, y);
+  }
+
+  // grad f and Hess f at (x, y), without f itself (left NaN): what the
+  // equations of motion need, a few instructions less.
+  template <class T>
+  [[gnu::always_inline]] Jet2<T> slopes(const T& x, const T& y) const {
+    if constexpr (std::is_same_v<T, double>) {
+      if (tape_.usable()) return tape_.slopes.run(x, y);
+    }
+    Jet2<T> j = eval(x, y);
+    j.f = T(std::nan(""));
+    return j;
   }
 
   // f(x, y) alone; bitwise equal to eval(x, y).f for double.
@@ -133,6 +154,8 @@ class Formula {
   // Deepest stack the program reaches.
   std::size_t stack_depth() const { return max_stack_; }
   const std::vector<Op>& program() const { return program_; }
+  // The lowered program eval and slopes run for double (formula_tape.hpp).
+  const FormulaTape& tape() const { return tape_; }
 
  private:
   // Stack for ordinary formulas; a Jet2 of a 14-direction AD number is 720
@@ -143,10 +166,13 @@ class Formula {
   Jet2<T> run(const T& x, const T& y) const;
   template <std::size_t N>
   double run_value(double x, double y) const;
+  // Lowers program_ to tape_ where it fits (formula.cpp).
+  void lower_to_tape();
 
   std::string text_;
   std::vector<Op> program_;
   std::size_t max_stack_ = 0;
+  FormulaTape tape_;
 };
 
 template <class T, std::size_t N>

@@ -21,6 +21,12 @@ namespace rb {
 
 namespace jet_detail {
 
+// Whether T's own functions give g(u) exactly (double, and the symbolic
+// scalar that lowers a formula to a tape), rather than through the value
+// and first derivative as for a first-order AD number.
+template <class T>
+inline constexpr bool is_direct_v = std::is_arithmetic_v<T>;
+
 // The double value of an AD number (the number itself for double).
 inline double value_of(double u) { return u; }
 template <class T>
@@ -51,8 +57,9 @@ T ipow(T b, unsigned n) {
 
 template <class T>
 T atan_of(const T& u) {
-  if constexpr (std::is_arithmetic_v<T>) {
-    return std::atan(u);
+  if constexpr (is_direct_v<T>) {
+    using std::atan;
+    return atan(u);
   } else {
     const double u0 = value_of(u);
     return lift(std::atan(u0), u, 1.0 / (1.0 + u0 * u0));
@@ -61,8 +68,9 @@ T atan_of(const T& u) {
 
 template <class T>
 T atan2_of(const T& a, const T& b) {
-  if constexpr (std::is_arithmetic_v<T>) {
-    return std::atan2(a, b);
+  if constexpr (is_direct_v<T>) {
+    using std::atan2;
+    return atan2(a, b);
   } else {
     // Eigen's atan2 returns a dynamically sized derivative (allocates)
     const double a0 = value_of(a), b0 = value_of(b), d0 = a0 * a0 + b0 * b0;
@@ -72,8 +80,9 @@ T atan2_of(const T& a, const T& b) {
 
 template <class T>
 T hypot_of(const T& a, const T& b) {
-  if constexpr (std::is_arithmetic_v<T>) {
-    return std::hypot(a, b);
+  if constexpr (is_direct_v<T>) {
+    using std::hypot;
+    return hypot(a, b);
   } else {
     const double a0 = value_of(a), b0 = value_of(b), h0 = std::hypot(a0, b0);
     return T(h0) + ((a - T(a0)) * a0 + (b - T(b0)) * b0) / h0;
@@ -83,8 +92,9 @@ T hypot_of(const T& a, const T& b) {
 // u^v with both variable.
 template <class T>
 T pow_of(const T& u, const T& v) {
-  if constexpr (std::is_arithmetic_v<T>) {
-    return std::pow(u, v);
+  if constexpr (is_direct_v<T>) {
+    using std::pow;
+    return pow(u, v);
   } else {
     const double u0 = value_of(u), v0 = value_of(v), p0 = std::pow(u0, v0);
     return T(p0) + (u - T(u0)) * (v0 * p0 / u0) + (v - T(v0)) * (p0 * std::log(u0));
@@ -94,8 +104,9 @@ T pow_of(const T& u, const T& v) {
 // c^v with a constant base c.
 template <class T>
 T pow_base_of(double c, const T& v) {
-  if constexpr (std::is_arithmetic_v<T>) {
-    return std::pow(c, v);
+  if constexpr (is_direct_v<T>) {
+    using std::pow;
+    return pow(c, v);
   } else {
     const double p0 = std::pow(c, value_of(v));
     return lift(p0, v, p0 * std::log(c));

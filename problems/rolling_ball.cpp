@@ -18,7 +18,7 @@ Derived RollingBall::derived(const FlatState& y) const {
   Derived d;
   d.N = k.N;
   d.omega = k.omega;
-  d.centre = Vec3(alpha.x(), alpha.y(), f.f) + r * k.N;
+  d.centre = Vec3(alpha.x(), alpha.y(), landscape_.height(alpha.x(), alpha.y())) + r * k.N;
   d.centre_velocity = r * k.omega.cross(k.N);
   d.energy = 0.5 * k.omega.dot(v) + m * g0 * d.centre.z();
   d.spin = k.omega.dot(k.N);

@@ -32,7 +32,7 @@ struct Kinematics {
   V3 omega;                       // angular velocity, world frame
   V2 alpha_dot;                   // contact point velocity
   V3 v_dot;                       // rate of the angular momentum about the contact
-  Jet2<T> f;                      // landscape value, gradient, Hessian
+  Jet2<T> f;                      // landscape gradient and Hessian; f.f is NaN (not needed)
 };
 
 // Derived quantities at one flat state (MODEL.md, "Derived quantities").
@@ -58,14 +58,15 @@ class RollingBall {
   const Landscape& landscape() const { return landscape_; }
   const BallParams& params() const { return p_; }
 
-  // The equations of motion at z = (v, alpha).
+  // The equations of motion at z = (v, alpha). Always inlined, so that in
+  // lie_rhs and flat_rhs the parts they do not return are never stored.
   template <class T>
-  Kinematics<T> kinematics(const T* z) const;
+  [[gnu::always_inline]] inline Kinematics<T> kinematics(const T* z) const;
 
   // Lie-group view: omega(z) and G(z) = (v', alpha') in one pass.
   // z and dz hold kZSize numbers; omega 3.
   template <class T>
-  void lie_rhs(const T* z, T* omega, T* dz) const {
+  [[gnu::always_inline]] void lie_rhs(const T* z, T* omega, T* dz) const {
     const Kinematics<T> k = kinematics(z);
     for (int i = 0; i < 3; ++i) omega[i] = k.omega[i];
     for (int i = 0; i < 3; ++i) dz[i] = k.v_dot[i];
@@ -75,7 +76,7 @@ class RollingBall {
 
   // Flat view: y' = F(y) for y in R^14 (R row-major, v, alpha); R' = hat(omega) R.
   template <class T>
-  void flat_rhs(const T* y, T* dy) const {
+  [[gnu::always_inline]] void flat_rhs(const T* y, T* dy) const {
     const Kinematics<T> k = kinematics(y + kOffsetV);
     const T* R = y + kOffsetR;
     T* dR = dy + kOffsetR;
@@ -116,49 +117,59 @@ class RollingBall {
   BallParams p_;
 };
 
+// Written out in scalars rather than with Eigen's 3-vectors: this is the hot
+// path of every integrator, and scalar code lets the compiler keep the whole
+// state in registers (Eigen's fixed-size temporaries cost about a third more
+// per evaluation here).
 template <class T>
 Kinematics<T> RollingBall::kinematics(const T* z) const {
   using std::sqrt;
-  using V3 = Eigen::Matrix<T, 3, 1>;
   Kinematics<T> k;
   const double r = p_.radius, m = p_.mass;
-  const V3 v(z[0], z[1], z[2]);
-  k.f = landscape_.at(z[3], z[4]);
+  k.f = landscape_.slopes(z[3], z[4]);
   const Jet2<T>& f = k.f;
 
-  // N = (-fx, -fy, 1) / w and its Jacobian N' = (I - N N^T) n' / w
-  const T w2 = T(1.0) + f.fx * f.fx + f.fy * f.fy;
-  const T w = sqrt(w2);
-  const T inv_w = T(1.0) / w;
-  k.N = V3(-f.fx * inv_w, -f.fy * inv_w, inv_w);
-  const V3 dn_x(-f.fxx, -f.fxy, T(0.0));
-  const V3 dn_y(-f.fxy, -f.fyy, T(0.0));
-  k.N_d.col(0) = (dn_x - k.N * k.N.dot(dn_x)) * inv_w;
-  k.N_d.col(1) = (dn_y - k.N * k.N.dot(dn_y)) * inv_w;
+  // N = (-fx, -fy, 1) / w and its Jacobian N' = (I - N N^T) n' / w, where
+  // the columns of n' are (-fxx, -fxy, 0) and (-fxy, -fyy, 0)
+  const T inv_w = T(1.0) / sqrt(T(1.0) + f.fx * f.fx + f.fy * f.fy);
+  const T N0 = -f.fx * inv_w, N1 = -f.fy * inv_w, N2 = inv_w;
+  const T px = -(N0 * f.fxx + N1 * f.fxy), py = -(N0 * f.fxy + N1 * f.fyy);  // N . n'
+  const T Nx0 = (-f.fxx - N0 * px) * inv_w, Nx1 = (-f.fxy - N1 * px) * inv_w, Nx2 = -(N2 * px) * inv_w;
+  const T Ny0 = (-f.fxy - N0 * py) * inv_w, Ny1 = (-f.fyy - N1 * py) * inv_w, Ny2 = -(N2 * py) * inv_w;
 
-  // C' = phi' + r N', phi' = [[1, 0], [0, 1], [fx, fy]]
-  k.C_d = r * k.N_d;
-  k.C_d(0, 0) += T(1.0);
-  k.C_d(1, 1) += T(1.0);
-  k.C_d(2, 0) += f.fx;
-  k.C_d(2, 1) += f.fy;
-  k.E = k.C_d.transpose() * k.C_d;
-  k.det_E = k.E(0, 0) * k.E(1, 1) - k.E(0, 1) * k.E(1, 0);
+  // C' = phi' + r N', phi' = [[1, 0], [0, 1], [fx, fy]]; E = C'^T C'
+  const T Cx0 = r * Nx0 + 1.0, Cx1 = r * Nx1, Cx2 = r * Nx2 + f.fx;
+  const T Cy0 = r * Ny0, Cy1 = r * Ny1 + 1.0, Cy2 = r * Ny2 + f.fy;
+  const T E00 = Cx0 * Cx0 + Cx1 * Cx1 + Cx2 * Cx2;
+  const T E01 = Cx0 * Cy0 + Cx1 * Cy1 + Cx2 * Cy2;
+  const T E11 = Cy0 * Cy0 + Cy1 * Cy1 + Cy2 * Cy2;
+  const T det_E = E00 * E11 - E01 * E01;
 
-  k.omega = omega_from_momentum(k.N, v);
+  // omega = T^-1 v = (5/7) / (m r^2) (v + (5/2) N (N . v))
+  const double s = (5.0 / 7.0) / (m * r * r);
+  const T Nv = 2.5 * (N0 * z[0] + N1 * z[1] + N2 * z[2]);
+  const T w0 = (z[0] + N0 * Nv) * s, w1 = (z[1] + N1 * Nv) * s, w2 = (z[2] + N2 * Nv) * s;
 
   // alpha' = r E^-1 C'^T (omega x N), with the 2x2 inverse written out
-  const V3 wxN = k.omega.cross(k.N);
-  const Eigen::Matrix<T, 2, 1> b = k.C_d.transpose() * wxN;
-  const T inv_det = T(r) / k.det_E;
-  k.alpha_dot[0] = (k.E(1, 1) * b[0] - k.E(0, 1) * b[1]) * inv_det;
-  k.alpha_dot[1] = (k.E(0, 0) * b[1] - k.E(1, 0) * b[0]) * inv_det;
+  const T q0 = w1 * N2 - w2 * N1, q1 = w2 * N0 - w0 * N2, q2 = w0 * N1 - w1 * N0;
+  const T b0 = Cx0 * q0 + Cx1 * q1 + Cx2 * q2, b1 = Cy0 * q0 + Cy1 * q1 + Cy2 * q2;
+  const T inv_det = r / det_E;
+  const T ax = (E11 * b0 - E01 * b1) * inv_det, ay = (E00 * b1 - E01 * b0) * inv_det;
 
-  // v' = m r (N x g) - m r^2 (N' alpha') x (N x omega), g = (0, 0, -g0)
-  const V3 N_dot = k.N_d * k.alpha_dot;
-  const T g0 = T(p_.gravity);
-  const V3 Nxg(-k.N[1] * g0, k.N[0] * g0, T(0.0));
-  k.v_dot = (m * r) * Nxg - (m * r * r) * N_dot.cross(k.N.cross(k.omega));
+  // v' = m r (N x g) - m r^2 (N' alpha') x (N x omega), g = (0, 0, -g0);
+  // N x omega = -(omega x N) = -q
+  const T d0 = Nx0 * ax + Ny0 * ay, d1 = Nx1 * ax + Ny1 * ay, d2 = Nx2 * ax + Ny2 * ay;  // N' alpha'
+  const double mrg = m * r * p_.gravity, mr2 = m * r * r;
+
+  k.N = {N0, N1, N2};
+  k.N_d << Nx0, Ny0, Nx1, Ny1, Nx2, Ny2;
+  k.C_d << Cx0, Cy0, Cx1, Cy1, Cx2, Cy2;
+  k.E << E00, E01, E01, E11;
+  k.det_E = det_E;
+  k.omega = {w0, w1, w2};
+  k.alpha_dot = {ax, ay};
+  k.v_dot = {-mrg * N1 + mr2 * (d1 * q2 - d2 * q1), mrg * N0 + mr2 * (d2 * q0 - d0 * q2),
+             mr2 * (d0 * q1 - d1 * q0)};
   return k;
 }
 

@@ -328,7 +328,8 @@ Scene parse_scene(std::string_view json_text, const std::string& source) {
 
 Scene load_scene_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path)) throw InputError("cannot read the scene file '" + path + "'", "scene");
+  if (!in || std::filesystem::is_directory(path))
+    throw InputError("cannot read the scene file '" + path + "'", "scene");
   std::ostringstream text;
   text << in.rdbuf();
   return parse_scene(text.str(), path);

@@ -17,15 +17,17 @@ inline Mat3 hat(const Vec3& w) {
   return W;
 }
 
-// exp(hat(z)) = I + (sin t / t) hat(z) + ((1 - cos t) / t^2) hat(z)^2, t = |z|;
-// below t^2 = 1e-6 the Taylor series (to t^6, error < 1e-21) avoids the
-// cancellation in 1 - cos t.
+// exp(hat(z)) = I + (sin t / t) hat(z) + ((1 - cos t) / t^2) hat(z)^2, t = |z|.
+// Below t^2 = 1e-2 (t < 0.1 rad, every step of a converged run) the Taylor
+// series to t^8 is used: its truncation error is below 3e-18 relative, under
+// rounding, and it avoids the sincos call, the square root and the division
+// (about a tenth of an RKMK4 step), as well as the cancellation in 1 - cos t.
 inline Mat3 so3_exp(const Vec3& z) {
   const double t2 = z.squaredNorm();
   double a, b;
-  if (t2 < 1e-6) {
-    a = 1.0 - t2 / 6.0 * (1.0 - t2 / 20.0 * (1.0 - t2 / 42.0));
-    b = 0.5 * (1.0 - t2 / 12.0 * (1.0 - t2 / 30.0 * (1.0 - t2 / 56.0)));
+  if (t2 < 1e-2) {
+    a = 1.0 + t2 * (-1.0 / 6.0 + t2 * (1.0 / 120.0 + t2 * (-1.0 / 5040.0 + t2 * (1.0 / 362880.0))));
+    b = 0.5 + t2 * (-1.0 / 24.0 + t2 * (1.0 / 720.0 + t2 * (-1.0 / 40320.0 + t2 * (1.0 / 3628800.0))));
   } else {
     const double t = std::sqrt(t2);
     a = std::sin(t) / t;

@@ -46,11 +46,19 @@ void write_trajectory_csv(std::ostream& out, const Problem& problem, const Traje
 
 std::vector<double> equally_spaced_outputs(double dt_out, double t_end, std::size_t max_rows) {
   if (!(dt_out > 0.0) || !std::isfinite(dt_out)) throw InputError("the output spacing must be a number > 0", "dt-out");
+  if (!(t_end > 0.0)) throw InputError("the end time must be a number > 0", "t-end");
   const double count = std::floor(t_end / dt_out * (1.0 - 1e-12));
-  if (count + 1 > static_cast<double>(max_rows))
-    throw InputError("t_end / dt-out asks for " + std::to_string(static_cast<long long>(count) + 1) +
-                         " rows, more than the limit of " + std::to_string(max_rows),
+  if (!(count + 1 <= static_cast<double>(max_rows))) {
+    // an infinite or astronomical count has no integer to print
+    char rows[32];
+    if (count < 1e18)
+      std::snprintf(rows, sizeof rows, "%lld", static_cast<long long>(count) + 1);
+    else
+      std::snprintf(rows, sizeof rows, "%.3g", count);
+    throw InputError("t_end / dt-out asks for " + std::string(rows) + " rows, more than the limit of " +
+                         std::to_string(max_rows),
                      "dt-out");
+  }
   std::vector<double> times;
   times.reserve(static_cast<std::size_t>(count) + 1);
   for (std::size_t k = 1; k <= static_cast<std::size_t>(count); ++k) times.push_back(static_cast<double>(k) * dt_out);

@@ -178,7 +178,9 @@ TEST(GslFailures, NonFiniteRightHandSideIsDivergedWithTheGslCode) {
     EXPECT_GT(run.stop_time, 1.0) << name;  // x = 1 is reached near t = 1.29
     EXPECT_LT(run.stop_time, 1.3) << name;
     EXPECT_TRUE(run.final_state.allFinite()) << name;
-    EXPECT_LT(run.final_state[kOffsetAlpha], 1.0) << name;
+    // the last finite state: a step's end is only checked for finiteness, so
+    // it may lie a step past the edge, where the next F is NaN
+    EXPECT_LT(run.final_state[kOffsetAlpha], 1.0 + 1e-2) << name;
   }
 }
 
@@ -203,20 +205,24 @@ TEST(GslFailures, MaxStepsCountsAcceptedAndRejected) {
   }
 }
 
-// 1e-18 is below what doubles resolve. GSL's error estimates are rounding
-// noise there, so a run either crawls (max_steps within the budget) or its
-// step cannot shrink (step_underflow); it never aborts or reports garbage.
-TEST(GslFailures, ToleranceBelowRoundingGivesAStatus) {
+// 1e-18 is below what doubles resolve: GSL's error estimates would be
+// rounding noise, and its control would either creep or accept steps whose
+// true error exceeds the tolerance. The run ends at once with
+// step_underflow (as odeint's do); a tolerance near rounding still runs.
+TEST(GslFailures, ToleranceBelowRoundingIsStepUnderflow) {
   for (const auto& m : registry()) {
     if (m->family() != "gsl" || !m->adaptive()) continue;
-    RunOptions o = adaptive(1e-18, 1.0);
-    o.max_steps = 2000;
-    const RunResult run = m->integrate(valley(), o);
-    EXPECT_TRUE(run.status == Status::max_steps || run.status == Status::step_underflow)
-        << m->name() << ": " << status_name(run.status) << " " << run.message;
-    EXPECT_LT(run.stop_time, 1.0) << m->name();
-    EXPECT_TRUE(run.final_state.allFinite()) << m->name();
+    const RunResult run = m->integrate(valley(), adaptive(1e-18, 1.0));
+    EXPECT_EQ(run.status, Status::step_underflow) << m->name() << ": " << run.message;
+    EXPECT_EQ(run.stop_time, 0.0) << m->name();
+    EXPECT_EQ(run.final_state, valley().y0()) << m->name();
+    EXPECT_EQ(run.cost.rhs_evals, 0) << m->name();
   }
+  RunOptions o = adaptive(1e-14, 1.0);
+  o.max_steps = 2000;
+  const RunResult run = find_integrator("gsl-rkf45-adaptive").integrate(valley(), o);
+  EXPECT_TRUE(run.status == Status::ok || run.status == Status::max_steps) << run.message;
+  EXPECT_TRUE(run.final_state.allFinite());
 }
 
 TEST(GslOptions, BadOptionsThrowInputError) {

@@ -1,0 +1,80 @@
+#include "integrators/baselines.hpp"
+
+#include "integrators/fixed_step.hpp"
+#include "problems/so3.hpp"
+
+namespace rb {
+
+namespace {
+
+// One classical RK4 step on any fixed-size state x' = f(x).
+template <class State, class F>
+void rk4_step(State& x, double h, F&& f) {
+  State k1, k2, k3, k4;
+  f(x, k1);
+  f(State(x + (0.5 * h) * k1), k2);
+  f(State(x + (0.5 * h) * k2), k3);
+  f(State(x + h * k3), k4);
+  x += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+}
+
+// (q, z): the unit quaternion (w, x, y, z) of R and z = (v, alpha).
+using QuatState = Eigen::Matrix<double, 4 + kZSize, 1>;
+
+Mat3 rotation_of_quaternion(const Eigen::Vector4d& q) {
+  return Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix();
+}
+
+}  // namespace
+
+std::string Rk4Projected::description() const {
+  return "classical RK4 on the flat view with R projected onto SO(3) after every step (polar decomposition "
+         "by a 3x3 SVD): 4 rhs and one SVD a step";
+}
+
+RunResult Rk4Projected::integrate(const Problem& problem, const RunOptions& options) const {
+  auto f = [&](const FlatState& y, FlatState& dy) { problem.flat_rhs(y.data(), dy.data()); };
+  auto step = [&](FlatState& y, double /*t*/, double h, Cost& cost) {
+    rk4_step(y, h, f);
+    cost.rhs_evals += 4;
+    // a non-finite R has no closest rotation; the driver reports it diverged
+    if (y.allFinite()) set_rotation(y, project_to_so3(rotation_of(y)));
+  };
+  return drive_fixed_step(problem, options, step);
+}
+
+std::string Rk4Quaternion::description() const {
+  return "classical RK4 on (q, z), a unit quaternion for R with q' = (0, omega) (x) q / 2, normalised after "
+         "every step: 4 rhs and one normalisation a step";
+}
+
+RunResult Rk4Quaternion::integrate(const Problem& problem, const RunOptions& options) const {
+  auto f = [&](const QuatState& x, QuatState& dx) {
+    Vec3 omega;
+    ZState g;
+    const ZState z = x.tail<kZSize>();
+    problem.lie_rhs(z.data(), omega.data(), g.data());
+    // (0, omega) (x) q = (-omega . q_v, q_w omega + omega x q_v)
+    const Vec3 qv = x.segment<3>(1);
+    dx[0] = -0.5 * omega.dot(qv);
+    dx.segment<3>(1) = 0.5 * (x[0] * omega + omega.cross(qv));
+    dx.tail<kZSize>() = g;
+  };
+  // q lives across steps: drive_fixed_step always passes back the state
+  // the last step returned (a run stops at the first invalid one), so R(q)
+  // in y and q agree
+  const Eigen::Quaterniond q0(rotation_of(problem.y0()));
+  QuatState x;
+  x << q0.w(), q0.x(), q0.y(), q0.z(), z_of(problem.y0());
+  auto step = [&](FlatState& y, double /*t*/, double h, Cost& cost) {
+    x.tail<kZSize>() = z_of(y);
+    rk4_step(x, h, f);
+    cost.rhs_evals += 4;
+    x.head<4>().normalize();
+    set_rotation(y, rotation_of_quaternion(x.head<4>()));
+    y.tail<kZSize>() = x.tail<kZSize>();
+  };
+  return drive_fixed_step(problem, options, step);
+}
+
+}  // namespace rb

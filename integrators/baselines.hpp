@@ -1,0 +1,36 @@
+#pragma once
+// What practitioners do instead of a Lie-group method, as baselines for it:
+// a classical method whose rotation is pulled back onto SO(3) after every
+// step. Both are RK4 (4 rhs evaluations a step), fixed-step, order 4.
+//
+// - rk4-projected (family "projection"): RK4 on the flat view y in R^14, then
+//   R <- the closest rotation to R (polar decomposition by a 3x3 SVD,
+//   rb::project_to_so3). A step: 4 flat rhs evaluations and one SVD.
+// - rk4-quaternion (family "quaternion"): RK4 on (q, z) in R^4 x R^5 with
+//   q' = 1/2 (0, omega) (x) q (omega from Problem::lie_rhs, world frame, so
+//   R(q) is body to world), then q <- q / |q|. A step: 4 Lie-view rhs
+//   evaluations, one normalisation, and R(q) for the flat state the run
+//   reports (a few dozen flops).
+#include "integrators/integrator.hpp"
+
+namespace rb {
+
+class Rk4Projected final : public Integrator {
+ public:
+  std::string name() const override { return "rk4-projected"; }
+  std::string family() const override { return "projection"; }
+  int declared_order() const override { return 4; }
+  std::string description() const override;
+  RunResult integrate(const Problem& problem, const RunOptions& options) const override;
+};
+
+class Rk4Quaternion final : public Integrator {
+ public:
+  std::string name() const override { return "rk4-quaternion"; }
+  std::string family() const override { return "quaternion"; }
+  int declared_order() const override { return 4; }
+  std::string description() const override;
+  RunResult integrate(const Problem& problem, const RunOptions& options) const override;
+};
+
+}  // namespace rb

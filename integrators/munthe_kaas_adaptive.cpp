@@ -1,0 +1,284 @@
+#include "integrators/munthe_kaas_adaptive.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "integrators/adaptive.hpp"
+#include "problems/input_error.hpp"
+#include "problems/so3.hpp"
+
+namespace rb {
+
+namespace {
+
+// (u, z) stacked: a stage's (dexpinv_u(omega), G(z)), or a step's increment
+// (u, z - z_n). The pair works on this vector as on any ODE's state.
+using LieVec = Eigen::Matrix<double, 3 + kZSize, 1>;
+constexpr double kLieSize = 3 + kZSize;
+
+constexpr double kSafety = 0.9;
+constexpr double kFacMin = 0.2;
+// non-finite trial steps a run tolerates before it is called diverged
+constexpr int kMaxNonFiniteTrials = 10;
+constexpr double kFacMax = 10.0;
+
+// Weights with their zeros left out: the stage loops skip them without a
+// branch (DP853's rows are half zeros).
+struct SparseWeights {
+  int n = 0;
+  std::array<int, kMaxStages> index{};
+  std::array<double, kMaxStages> value{};
+  SparseWeights() = default;
+  SparseWeights(const double* w, int count) {
+    for (int j = 0; j < count; ++j)
+      if (w[j] != 0.0) {
+        index[static_cast<std::size_t>(n)] = j;
+        value[static_cast<std::size_t>(n++)] = w[j];
+      }
+  }
+};
+
+// The pair's steps for drive_adaptive (see integrators/adaptive.hpp).
+template <bool Dense>
+class LieStepper {
+ public:
+  static constexpr bool dense_output = Dense;
+
+  LieStepper(const Problem& problem, const EmbeddedPair& pair, const Tolerances& tol,
+             const std::vector<double>& outputs)
+      : problem_(&problem), pair_(&pair), tol_(tol), outputs_(&outputs),
+        alpha_(0.7 / pair.error_order), beta_(0.4 / pair.error_order) {
+    R_ = rotation_of(problem.y0());
+    z_ = z_of(problem.y0());
+    for (int i = 0; i < pair.total; ++i)
+      rows_[static_cast<std::size_t>(i)] = SparseWeights(&pair.a[static_cast<std::size_t>(i * pair.total)], i);
+    b_ = SparseWeights(pair.b.data(), pair.stages);
+    e_ = SparseWeights(pair.e.data(), pair.stages);
+    if (!pair.e3.empty()) e3_ = SparseWeights(pair.e3.data(), pair.stages);
+    if constexpr (Dense) dense_y_.reserve(8);
+  }
+
+  Attempt attempt(double t, double& h, Cost& cost) {
+    const EmbeddedPair& p = *pair_;
+    if (!have_first_) {
+      problem_->lie_rhs(z_.data(), omega_first_.data(), g_first_.data());
+      ++cost.rhs_evals;
+      have_first_ = true;
+    }
+    k_[0] << omega_first_, g_first_;
+    for (int i = 1; i < p.stages; ++i) evaluate_stage(i, h, z_, cost);
+    LieVec w_new;  // the step: (u_n+1, z_n+1 - z_n)
+    if (p.fsal < p.stages) {
+      w_new = w_fsal_;
+    } else {
+      w_new = combine(b_, h);
+    }
+    const double err = error_norm(w_new, h);
+    if (!std::isfinite(err) || !w_new.allFinite()) {
+      // a trial step that left where F is finite (past a landscape's edge)
+      // was too large: shrink it hard, as odeint and GSL do. If the state
+      // itself blows up (or the edge is met again and again), the run ends
+      // diverged at the last finite state.
+      if (++nonfinite_trials_ > kMaxNonFiniteTrials) {
+        char text[160];
+        std::snprintf(text, sizeof text, "the state is not finite beyond t = %.9g (%d trial steps past it, the last of %.3g)",
+                      t, nonfinite_trials_, h);
+        throw StepFailure(Status::diverged, text);
+      }
+      h *= kFacMin;
+      rejected_last_ = true;
+      return Attempt::rejected;
+    }
+    if (err > 1.0) {
+      // a rejection shrinks by the plain elementary controller (exponent 1/k)
+      h *= std::max(kFacMin, kSafety * std::pow(err, -1.0 / pair_->error_order));
+      rejected_last_ = true;
+      return Attempt::rejected;
+    }
+    const double fac_max = rejected_last_ ? 1.0 : kFacMax;
+    const double fac = kSafety * std::pow(std::max(err, 1e-10), -alpha_) * std::pow(err_prev_, beta_);
+    err_prev_ = std::max(err, 1e-4);
+    rejected_last_ = false;
+    const double h_step = h;
+    h = h_step * std::clamp(fac, kFacMin, fac_max);
+
+    R_prev_ = R_;
+    z_prev_ = z_;
+    R_ = so3_exp(w_new.head<3>()) * R_prev_;
+    ++cost.exp_evals;
+    z_ = z_prev_ + w_new.tail<kZSize>();
+    // the next step's first stage
+    if (p.fsal < p.stages) {
+      omega_first_ = omega_fsal_;
+      g_first_ = k_[p.fsal].tail<kZSize>();
+    } else {
+      problem_->lie_rhs(z_.data(), omega_first_.data(), g_first_.data());
+      ++cost.rhs_evals;
+    }
+    if constexpr (Dense) dense_outputs(t, h_step, w_new, cost);
+    return Attempt::accepted;
+  }
+
+  void state(FlatState& y) const {
+    set_rotation(y, R_);
+    y.tail<kZSize>() = z_;
+  }
+
+  // The outputs were computed in attempt (they cost stages and exps, counted
+  // there); a time not among them can only lie within rounding of the step's
+  // end, where the state is the step's.
+  void interpolate(double t, FlatState& y) const {
+    for (std::size_t i = 0; i < dense_t_.size(); ++i)
+      if (dense_t_[i] == t) {
+        y = dense_y_[i];
+        return;
+      }
+    state(y);
+  }
+
+ private:
+  // h sum_j w_j k_j.
+  LieVec combine(const SparseWeights& w, double h) const {
+    LieVec sum = LieVec::Zero();
+    for (int m = 0; m < w.n; ++m) {
+      const auto um = static_cast<std::size_t>(m);
+      sum += w.value[um] * k_[static_cast<std::size_t>(w.index[um])];
+    }
+    return h * sum;
+  }
+
+  // k_i = (dexpinv_U(omega(Z)), G(Z)) at (U, Z - z_n) = h sum_j a_ij k_j,
+  // z_n the step's start.
+  void evaluate_stage(int i, double h, const ZState& z_n, Cost& cost) {
+    const EmbeddedPair& p = *pair_;
+    const LieVec w = combine(rows_[static_cast<std::size_t>(i)], h);
+    const ZState z = z_n + w.tail<kZSize>();
+    Vec3 omega;
+    ZState g;
+    problem_->lie_rhs(z.data(), omega.data(), g.data());
+    ++cost.rhs_evals;
+    k_[static_cast<std::size_t>(i)] << dexpinv(w.head<3>(), omega), g;
+    ++cost.dexpinv_evals;
+    if (i == p.fsal) {
+      w_fsal_ = w;
+      omega_fsal_ = omega;
+    }
+  }
+
+  // The controller's error: RMS of h sum e_i k_i against the scales
+  // (Hairer's stretched combination of two estimates for DP853).
+  double error_norm(const LieVec& w_new, double h) const {
+    const EmbeddedPair& p = *pair_;
+    LieVec scale;
+    scale.head<3>().setConstant(tol_.atol + tol_.rtol);
+    scale.tail<kZSize>() =
+        (tol_.atol + tol_.rtol * z_.cwiseAbs().cwiseMax((z_ + w_new.tail<kZSize>()).cwiseAbs()).array()).matrix();
+    const double e2 = (combine(e_, h).array() / scale.array()).square().sum();
+    if (p.e3.empty()) return std::sqrt(e2 / kLieSize);
+    const double e3 = (combine(e3_, h).array() / scale.array()).square().sum();
+    if (e2 == 0.0 && e3 == 0.0) return 0.0;
+    return e2 / std::sqrt((e2 + 0.01 * e3) * kLieSize);
+  }
+
+  // Every output strictly inside (t, t + h): the extra stages once, then
+  // u(theta), z(theta) from the dense weights and R = exp(hat(u)) R_n.
+  void dense_outputs(double t, double h, const LieVec& w_new, Cost& cost) {
+    const EmbeddedPair& p = *pair_;
+    dense_t_.clear();
+    dense_y_.clear();
+    const std::vector<double>& out = *outputs_;
+    while (next_out_ < out.size() && out[next_out_] <= t) ++next_out_;
+    if (next_out_ == out.size() || out[next_out_] >= t + h) return;
+    if (p.fsal >= p.stages && p.total > p.fsal) {
+      k_[static_cast<std::size_t>(p.fsal)] << dexpinv(w_new.head<3>(), omega_first_), g_first_;
+      ++cost.dexpinv_evals;
+    }
+    for (int i = p.fsal + 1; i < p.total; ++i) evaluate_stage(i, h, z_prev_, cost);
+    for (std::size_t m = next_out_; m < out.size() && out[m] < t + h; ++m) {
+      const double theta = (out[m] - t) / h;
+      LieVec sum = LieVec::Zero();
+      for (int j = 0; j < p.total; ++j) {
+        const double* d = &p.dense[static_cast<std::size_t>(j * p.dense_degree)];
+        double b = 0.0;
+        for (int q = p.dense_degree - 1; q >= 0; --q) b = (b + d[q]) * theta;
+        sum += b * k_[static_cast<std::size_t>(j)];
+      }
+      const LieVec w = h * sum;
+      FlatState y;
+      set_rotation(y, so3_exp(w.head<3>()) * R_prev_);
+      ++cost.exp_evals;
+      y.tail<kZSize>() = z_prev_ + w.tail<kZSize>();
+      dense_t_.push_back(out[m]);
+      dense_y_.push_back(y);
+    }
+  }
+
+  const Problem* problem_;
+  const EmbeddedPair* pair_;
+  Tolerances tol_;
+  const std::vector<double>* outputs_;
+  double alpha_, beta_;
+  Mat3 R_, R_prev_;
+  ZState z_, z_prev_;
+  std::array<LieVec, kMaxStages> k_;
+  std::array<SparseWeights, kMaxStages> rows_;
+  SparseWeights b_, e_, e3_;
+  Vec3 omega_first_, omega_fsal_;  // omega at the step's start; at the FSAL stage
+  ZState g_first_;
+  LieVec w_fsal_;
+  bool have_first_ = false;
+  bool rejected_last_ = false;
+  int nonfinite_trials_ = 0;  // trial steps that left where F is finite
+  double err_prev_ = 1e-4;
+  std::size_t next_out_ = 0;
+  std::vector<double> dense_t_;
+  std::vector<FlatState> dense_y_;
+};
+
+}  // namespace
+
+MuntheKaasAdaptive::MuntheKaasAdaptive(EmbeddedPair pair, std::string name, bool use_dense)
+    : pair_(std::move(pair)), name_(std::move(name)), use_dense_(use_dense && pair_.dense_order > 0) {
+  // the stage loops index by these sizes: a pair that does not fit is refused
+  const EmbeddedPair& p = pair_;
+  const auto n = static_cast<std::size_t>(p.total);
+  const bool fits = p.stages >= 2 && p.stages <= p.total && p.total <= kMaxStages && p.fsal >= 1 &&
+                    p.fsal <= p.stages && p.error_order >= 1 && p.a.size() == n * n && p.c.size() == n &&
+                    p.b.size() == n && p.e.size() == n && (p.e3.empty() || p.e3.size() == n) &&
+                    (p.dense_order == 0 || p.dense.size() == n * static_cast<std::size_t>(p.dense_degree));
+  if (!fits) throw InputError("embedded pair '" + p.name + "' has inconsistent sizes", "pair");
+  // the propagating weights against the order conditions (to 4)
+  (void)p.tableau(p.name);
+}
+
+std::string MuntheKaasAdaptive::description() const {
+  const EmbeddedPair& p = pair_;
+  const int per_attempt = p.stages - 1 + (p.fsal < p.stages ? 0 : 1);
+  std::string text = "adaptive Runge-Kutta-Munthe-Kaas on the " + p.name + " pair (order " +
+                     std::to_string(p.order) + ", error estimate on (u, z), PI controller): " +
+                     std::to_string(per_attempt) + " rhs and " + std::to_string(p.stages - 1) +
+                     " dexpinv a step, one exp";
+  if (use_dense_)
+    text += "; outputs by its order-" + std::to_string(p.dense_order) + " dense output through exp" +
+            (p.total > p.fsal + 1 ? " (" + std::to_string(p.total - p.fsal - 1) + " extra rhs a step with outputs)"
+                                  : std::string());
+  else
+    text += "; steps clamped onto the outputs";
+  return text;
+}
+
+RunResult MuntheKaasAdaptive::integrate(const Problem& problem, const RunOptions& options) const {
+  const Tolerances tol = tolerances_of(options);
+  const std::vector<double> outputs = output_times_of(problem, options);
+  if (use_dense_) {
+    LieStepper<true> stepper(problem, pair_, tol, outputs);
+    return drive_adaptive(problem, options, pair_.order, stepper);
+  }
+  LieStepper<false> stepper(problem, pair_, tol, outputs);
+  return drive_adaptive(problem, options, pair_.order, stepper);
+}
+
+}  // namespace rb

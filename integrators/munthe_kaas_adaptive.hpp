@@ -1,0 +1,52 @@
+#pragma once
+// Adaptive Runge-Kutta-Munthe-Kaas on embedded pairs (MODEL.md, family 3,
+// with a step-size controller). Over a step with R_n fixed, the pair
+// integrates u' = dexpinv_u(omega(z)), u(t_n) = 0, with z' = G(z);
+// R_{n+1} = exp(hat(u_{n+1})) R_n, so R stays in SO(3) to rounding error.
+//
+// - The local error is estimated on (u, z) only, never on R's entries: u's
+//   three components are angles, measured against atol + rtol (R's entries
+//   are of size 1, as a flat method sees them); z's against
+//   atol + rtol max(|z_n,i|, |z_n+1,i|). Norm: root mean square (Hairer's).
+// - PI step-size controller (Gustafsson): after an accepted step
+//   h_new = h * 0.9 err^(-0.7/k) err_prev^(0.4/k), k the estimate's order,
+//   the factor kept in [0.2, 10] and at most 1 right after a rejection; a
+//   rejected step shrinks by 0.9 err^(-1/k), at least to 0.2 h.
+// - Outputs inside a step come from the pair's dense output mapped through
+//   exp: R(t_n + theta h) = exp(hat(u(theta))) R_n, z(theta) likewise (one
+//   exp each; DP853 needs its 3 extra stages once per step that holds an
+//   output). Without a dense output (or with use_dense = false) steps are
+//   clamped to land on every output time.
+// - FSAL: the right-hand side at (t_n+1, z_n+1) is the next step's first
+//   stage; the stage's dexpinv differs (u = 0 there), the evaluation not.
+//
+// Cost per accepted step: (stages - 1) rhs evaluations and dexpinv
+// applications in each attempt, plus the FSAL stage's rhs where the error
+// estimate does not use it, and one exp; each output adds one exp.
+#include "integrators/integrator.hpp"
+#include "integrators/tableaus_high_order.hpp"
+
+namespace rb {
+
+class MuntheKaasAdaptive final : public Integrator {
+ public:
+  // use_dense = false clamps steps onto the outputs even where the pair has a
+  // dense output (for tests and comparisons). Throws InputError for a pair
+  // whose sizes do not fit or whose b fails the order conditions (to 4).
+  MuntheKaasAdaptive(EmbeddedPair pair, std::string name, bool use_dense = true);
+  std::string name() const override { return name_; }
+  std::string family() const override { return "lie-adaptive"; }
+  int declared_order() const override { return pair_.order; }
+  bool adaptive() const override { return true; }
+  std::string description() const override;
+  RunResult integrate(const Problem& problem, const RunOptions& options) const override;
+
+  const EmbeddedPair& pair() const { return pair_; }
+
+ private:
+  EmbeddedPair pair_;
+  std::string name_;
+  bool use_dense_;
+};
+
+}  // namespace rb
