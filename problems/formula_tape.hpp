@@ -14,6 +14,7 @@
 // takes the formula from about 45 % to about 15 % of a right-hand side.
 #include <array>
 #include <cmath>
+#include <math.h>  // sincos (glibc, _GNU_SOURCE), for clang
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -88,7 +89,11 @@ class TapeProgram {
         case TapeCode::sincos:
         case TapeCode::cossin: {
           double s, c;
+#if defined(__clang__)
+          ::sincos(a, &s, &c);  // glibc's (clang has no __builtin_sincos)
+#else
           __builtin_sincos(a, &s, &c);
+#endif
           const bool cos_first = op.code == TapeCode::cossin;
           d = cos_first ? c : s;
           r[op.b] = cos_first ? s : c;

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Every test: installs the dependencies, builds, prints the per-step timing
-# table in its short mode (no timing is asserted), then runs the GoogleTest
-# suite and the analysis tests through CTest. The README's test command; CI
-# runs it too.
+# table in its short mode (no timing is asserted), runs the GoogleTest suite
+# and the analysis tests through CTest, then the robustness script: each
+# libFuzzer target for 60 s and the test suite again under ASan + UBSan
+# (a clang build in build/robustness). The README's test command; CI runs it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install-deps.sh
@@ -12,3 +13,4 @@ for perf in build/release/perf_*; do
   "$perf" --benchmark_min_time=0.01
 done
 ctest --preset release -j 2 --timeout 900
+./scripts/robustness.sh
