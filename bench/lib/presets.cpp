@@ -60,11 +60,12 @@ std::vector<double> parse_number_list(const std::string& text, const std::string
   std::vector<double> values;
   const auto range = text.find("..");
   if (range != std::string::npos) {
-    // 2^-a..2^-b
-    int a = 0, b = 0;
-    if (std::sscanf(text.c_str(), "2^-%d..2^-%d", &a, &b) != 2 || a > b || a < -60 || b > 60)
+    // 2^p..2^q with integers p >= q (2^0..2^-10): falling, as h is swept
+    int p = 0, q = 0, used = 0;
+    if (std::sscanf(text.c_str(), "2^%d..2^%d%n", &p, &q, &used) != 2 || used != static_cast<int>(text.size()) ||
+        p < q || p > 60 || q < -60)
       throw InputError("expected a range like 2^-3..2^-8, got '" + text + "'", key);
-    return powers_of_two(a, b);
+    return powers_of_two(-p, -q);
   }
   std::stringstream in(text);
   std::string item;

@@ -162,7 +162,16 @@ TEST(Report, MergedShardsEqualTheUnshardedReport) {
 TEST(Report, PresetsAndListsRejectBadInput) {
   EXPECT_THROW(preset("fastest"), InputError);
   EXPECT_EQ(parse_number_list("2^-2..2^-4", "h"), (std::vector<double>{0.25, 0.125, 0.0625}));
+  EXPECT_EQ(parse_number_list("2^1..2^-1", "h"), (std::vector<double>{2.0, 1.0, 0.5}));
   EXPECT_EQ(parse_number_list("0.1,1e-3", "h"), (std::vector<double>{0.1, 1e-3}));
+  for (const char* bad : {"2^-3..2^-1", "2^-2..2^-4x", "2^-2..2^-99", "2^..2^-3"}) {
+    try {
+      parse_number_list(bad, "h");
+      ADD_FAILURE() << bad;
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), std::string("'h': expected a range like 2^-3..2^-8, got '") + bad + "'");
+    }
+  }
   try {
     parse_number_list("0.1,abc", "h");
     FAIL();
