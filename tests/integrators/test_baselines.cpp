@@ -11,22 +11,13 @@
 #include "problems/scene.hpp"
 #include "problems/so3.hpp"
 #include "tests/integrators/convergence.hpp"
+#include "tests/integrators/fixtures.hpp"
 
 namespace rb {
 namespace {
 
-const Problem& valley() {
-  static const Problem problem = make_problem(load_scene("valley-sideways"));
-  return problem;
-}
-
-RunOptions every(double dt, double t_end, double h) {
-  RunOptions o;
-  o.t_end = t_end;
-  o.h = h;
-  for (int k = 1; k * dt < t_end - 1e-12; ++k) o.output_times.push_back(k * dt);
-  return o;
-}
+using testing::valley;
+using testing::every;
 
 TEST(Baseline, RegisteredWithTheirFamilies) {
   EXPECT_EQ(find_integrator("rk4-projected").family(), "projection");

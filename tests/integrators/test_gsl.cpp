@@ -13,14 +13,12 @@
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"
+#include "tests/integrators/fixtures.hpp"
 
 namespace rb {
 namespace {
 
-const Problem& valley() {
-  static const Problem problem = make_problem(load_scene("valley-sideways"));
-  return problem;
-}
+using testing::valley;
 
 RunOptions fixed(double h, double t_end) {
   RunOptions o;

@@ -12,16 +12,14 @@
 #include "integrators/registry.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"
+#include "tests/integrators/fixtures.hpp"
 
 namespace rb {
 namespace {
 
 constexpr double kTEnd = 1.0;
 
-const Problem& valley() {
-  static const Problem problem = make_problem(load_scene("valley-sideways"));
-  return problem;
-}
+using testing::valley;
 
 // rkmk4 at h = 5e-5: its error (~1e-17, rounding ~1e-15) is far below every
 // error fitted.
