@@ -141,6 +141,9 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
     // record every output this step reached, checked in full; a failing
     // output ends the run there with its state, as in drive_fixed_step
     if constexpr (Stepper::dense_output) {
+      // the last state known valid: the step's start, then each output kept
+      const FlatState* valid = &y;
+      double t_valid = t_old;
       for (; next < outputs.size() && outputs[next] <= t; ++next) {
         const double t_out = outputs[next];
         if (t_out == t)
@@ -148,8 +151,15 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
         else
           stepper.interpolate(t_out, y_out);
         const Validity full = problem.check_full(y_out);
-        if (full.status != Status::ok) return stop(full.status, full.reason, y_out, t_out);
+        if (full.status != Status::ok) {
+          // a non-finite interpolant (the dense output can see what the
+          // step's end did not) is not a state to end on
+          if (!y_out.allFinite()) return stop(full.status, full.reason, *valid, t_valid);
+          return stop(full.status, full.reason, y_out, t_out);
+        }
         run.output.push(t_out, y_out);
+        valid = &run.output.y.back();
+        t_valid = t_out;
       }
     } else if (lands) {
       const Validity full = problem.check_full(y_new);

@@ -43,6 +43,8 @@ run_fuzzers() {
   local failed=0 summary="" t
   for t in "${targets[@]}"; do
     local corpus="$build/corpus/$t" artifacts="$build/artifacts/$t/" log="$build/$t.log" rc=0
+    # artifacts are this run's findings only (copy one elsewhere to keep it)
+    rm -rf "$artifacts"
     mkdir -p "$corpus" "$artifacts"
     echo "== robustness: $t for ${fuzz_seconds} s"
     # new inputs go to the first folder; the seeds in fuzz/corpus stay as they are

@@ -126,6 +126,32 @@ TEST(FamilyFailures, AdaptiveMethodsShrinkANonFiniteTrialStep) {
   }
 }
 
+// Found by fuzz_run (fuzz/corpus/fuzz_run/regress-dense-nonfinite.json): a
+// dense output can go non-finite between two finite step ends; the run must
+// then end on the last valid state, not on the interpolant. Short runs as the
+// fuzzer makes them: every adaptive method, tolerances, given first steps.
+TEST(FamilyFailures, ANonFiniteDenseOutputEndsOnTheLastValidState) {
+  const Problem p = data_problem("regress-dense-nonfinite.json");
+  int stopped = 0;
+  for (const auto& m : registry()) {
+    if (!m->adaptive()) continue;
+    for (const double tol : {1e-3, 1e-6, 1e-9, 1e-13}) {
+      for (int k = 0; k <= 64; ++k) {
+        RunOptions o = options_for(*m, 0.5, 0.0, tol, 0.125);
+        o.h = k == 0 ? 0.0 : 0.5 / k;
+        o.max_steps = 60;
+        const RunResult r = m->integrate(p, o);
+        if (r.status == Status::ok) continue;
+        ++stopped;
+        ASSERT_TRUE(r.final_state.allFinite())
+            << m->name() << " tol " << tol << " h " << o.h << ": " << status_name(r.status) << ": " << r.message;
+        for (const FlatState& y : r.output.y) ASSERT_TRUE(y.allFinite()) << m->name();
+      }
+    }
+  }
+  EXPECT_GT(stopped, 0) << "the scene no longer makes runs stop";
+}
+
 // A library's own error: an implicit method's Newton iteration cannot
 // converge over a huge step, and the library says so with an error code.
 // The first implicit fixed-step method of each family that has one.
