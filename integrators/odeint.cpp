@@ -47,9 +47,11 @@ class OdeintIntegrator : public Integrator {
 
 // ---- fixed step ----
 
-// A one-step stepper's do_step on a copy of the state; the stepper lives in
-// the run. dopri5 keeps its last derivative (FSAL): that is sound because the
-// state passed in is always the one it returned (a run stops at a bad step).
+// A one-step stepper's do_step on the run's own copy x of the state; the
+// stepper lives in the run. drive_fixed_step always passes back the state a
+// step returned (a run stops at a bad step), so x already holds it: one copy
+// a step, out to the driver. dopri5 keeps its last derivative (FSAL), sound
+// for the same reason.
 template <class Stepper>
 class OdeintFixed final : public OdeintIntegrator {
  public:
@@ -57,10 +59,10 @@ class OdeintFixed final : public OdeintIntegrator {
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
     Stepper stepper;
     OdeintState x;
-    auto step = [&](FlatState& y, double t, double h, Cost& cost) {
-      load(y, x);
+    load(problem.y0(), x);
+    auto step = [&](const FlatState& /*y, held in x*/, FlatState& next, double t, double h, Cost& cost) {
       stepper.do_step(OdeintSystem{&problem, &cost.rhs_evals}, x, t, h);
-      store(x, y);
+      store(x, next);
     };
     return drive_fixed_step(problem, options, step);
   }
@@ -78,16 +80,16 @@ class OdeintAbm final : public OdeintIntegrator {
   using OdeintIntegrator::OdeintIntegrator;
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
     ode::adams_bashforth_moulton<Steps, OdeintState> stepper;
-    OdeintState x;
+    OdeintState x;  // the state, as in OdeintFixed
+    load(problem.y0(), x);
     double h_history = 0.0;  // the step the stored derivatives belong to
-    auto step = [&](FlatState& y, double t, double h, Cost& cost) {
+    auto step = [&](const FlatState& /*y, held in x*/, FlatState& next, double t, double h, Cost& cost) {
       if (std::abs(h - h_history) > 1e-12 * h) {
         stepper.reset();
         h_history = h;
       }
-      load(y, x);
       stepper.do_step(OdeintSystem{&problem, &cost.rhs_evals}, x, t, h);
-      store(x, y);
+      store(x, next);
     };
     return drive_fixed_step(problem, options, step);
   }
