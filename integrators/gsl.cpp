@@ -70,25 +70,12 @@ struct CallbackState {
   std::string exception;  // what a callback caught, empty when none
 };
 
-// F(y); GSL_EBADFUNC makes GSL stop at once where F is not finite (or the
-// problem threw: exceptions must not cross GSL's C frames).
-int rhs_callback(double /*t*/, const double y[], double dydt[], void* params) {
-  auto& s = *static_cast<CallbackState*>(params);
-  ++s.rhs_evals;
-  try {
-    s.problem->flat_rhs(y, dydt);
-  } catch (const std::exception& e) {
-    s.exception = e.what();
-    return GSL_EBADFUNC;
-  }
-  return Eigen::Map<const FlatState>(dydt).allFinite() ? GSL_SUCCESS : GSL_EBADFUNC;
-}
-
-// The same without the finiteness test, for the explicit steppers at a fixed
-// step: a non-finite F makes the step's state non-finite, which the shared
-// fixed-step loop checks after every step anyway (diverged, at the last valid
-// state). Testing F on every call holds the return until F is done and cost
-// 5 % of gsl-rk4's step (bench/perf_gsl_interface.cpp).
+// F(y) with the finiteness test left out, for the explicit steppers at a
+// fixed step: a non-finite F makes the step's state non-finite, which the
+// shared fixed-step loop checks after every step anyway (diverged, at the last
+// valid state). Testing F on every call holds the return until F is done and
+// cost 5 % of gsl-rk4's step (bench/perf_gsl_interface.cpp). GSL_EBADFUNC
+// when the problem threw: exceptions must not cross GSL's C frames.
 int rhs_callback_unchecked(double /*t*/, const double y[], double dydt[], void* params) {
   auto& s = *static_cast<CallbackState*>(params);
   ++s.rhs_evals;
@@ -99,6 +86,14 @@ int rhs_callback_unchecked(double /*t*/, const double y[], double dydt[], void* 
     return GSL_EBADFUNC;
   }
   return GSL_SUCCESS;
+}
+
+// F(y); GSL_EBADFUNC also where F is not finite, so that GSL's adaptive and
+// implicit steppers stop at once there.
+int rhs_callback(double t, const double y[], double dydt[], void* params) {
+  const int status = rhs_callback_unchecked(t, y, dydt, params);
+  if (status != GSL_SUCCESS) return status;
+  return Eigen::Map<const FlatState>(dydt).allFinite() ? GSL_SUCCESS : GSL_EBADFUNC;
 }
 
 // dfdy row-major, as GSL wants; dfdt = 0 since F does not depend on t.
