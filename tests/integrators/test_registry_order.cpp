@@ -33,9 +33,11 @@ const FlatState& reference() {
   return ref;
 }
 
-std::vector<std::string> registered_names() {
+// adaptive methods are checked by tolerance proportionality instead
+std::vector<std::string> fixed_step_names() {
   std::vector<std::string> names;
-  for (const auto& integrator : registry()) names.push_back(integrator->name());
+  for (const auto& integrator : registry())
+    if (!integrator->adaptive()) names.push_back(integrator->name());
   return names;
 }
 
@@ -43,7 +45,6 @@ class RegistryOrder : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(RegistryOrder, ObservedOrderWithinPointTwoOfDeclared) {
   const Integrator& method = find_integrator(GetParam());
-  if (method.adaptive()) GTEST_SKIP() << "adaptive: checked by tolerance proportionality";
   const testing::Convergence c = testing::measure_convergence(method, valley(), kTEnd, reference());
   std::ostringstream data;
   data.precision(3);
@@ -66,7 +67,7 @@ TEST_P(RegistryOrder, ObservedOrderWithinPointTwoOfDeclared) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(AllRegistered, RegistryOrder, ::testing::ValuesIn(registered_names()),
+INSTANTIATE_TEST_SUITE_P(AllRegistered, RegistryOrder, ::testing::ValuesIn(fixed_step_names()),
                          [](const ::testing::TestParamInfo<std::string>& info) {
                            std::string name = info.param;
                            for (char& ch : name)
@@ -82,7 +83,8 @@ TEST(RegistryOrder, SeminarSignErrorCostsAnOrderInRotationOnly) {
 }
 
 TEST(Registry, NamesAreUniqueAndLookupFails) {
-  std::vector<std::string> names = registered_names();
+  std::vector<std::string> names;
+  for (const auto& integrator : registry()) names.push_back(integrator->name());
   std::sort(names.begin(), names.end());
   EXPECT_EQ(std::adjacent_find(names.begin(), names.end()), names.end());
   try {
