@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 #include <string>
 
 #include "integrators/fixed_step.hpp"
@@ -90,12 +91,9 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
   run.output.y.reserve(outputs.size());
   FlatState y = problem.y0();
   double t = 0.0;
+  // moved out, not copied: the rows may be many
   auto stop = [&](Status status, const std::string& reason, const FlatState& last_valid, double t_valid) {
-    run.status = status;
-    run.message = reason;
-    run.final_state = last_valid;
-    run.stop_time = t_valid;
-    return run;
+    return std::move(run.stopped(status, reason, last_valid, t_valid));
   };
   if (const Validity v = attainable(tol, y); v.status != Status::ok) return stop(v.status, v.reason, y, t);
   double h = options.h > 0.0 ? options.h : initial_step(problem, y, tol, order, t_end, run.cost);

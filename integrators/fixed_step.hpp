@@ -100,12 +100,9 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
   FlatState* y = &states[0];
   FlatState* next = &states[1];
   double t = 0.0;
+  // moved out, not copied: the rows may be many
   auto stop = [&](const Validity& v, const FlatState& last_valid, double t_valid) {
-    run.status = v.status;
-    run.message = v.reason;
-    run.final_state = last_valid;
-    run.stop_time = t_valid;
-    return run;
+    return std::move(run.stopped(v.status, v.reason, last_valid, t_valid));
   };
   for (const double t_out : outputs) {
     const double span = t_out - t;

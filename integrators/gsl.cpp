@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <sstream>
+#include <utility>
 
 #include "integrators/adaptive.hpp"
 #include "integrators/fixed_step.hpp"
@@ -288,12 +289,9 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
   run.output.y.reserve(outputs.size());
   FlatState y = problem.y0();
   double t = 0.0;
+  // moved out, not copied: the rows may be many
   auto stop = [&](const Validity& v, const FlatState& last_valid, double t_valid) {
-    run.status = v.status;
-    run.message = v.reason;
-    run.final_state = last_valid;
-    run.stop_time = t_valid;
-    return run;
+    return std::move(run.stopped(v.status, v.reason, last_valid, t_valid));
   };
   // GSL's controller would accept steps at a tolerance below rounding (its
   // error estimate is noise there): refuse it up front, as odeint's adapters do

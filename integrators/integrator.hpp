@@ -49,6 +49,15 @@ struct RunResult {
   FlatState final_state = FlatState::Zero();  // the last valid state
   Cost cost;
   Trajectory output;       // every output up to the stop
+
+  // Ends the run early: why, and the last valid state and its time.
+  RunResult& stopped(Status why, const std::string& reason, const FlatState& last_valid, double t_valid) {
+    status = why;
+    message = reason;
+    final_state = last_valid;
+    stop_time = t_valid;
+    return *this;
+  }
 };
 
 class Integrator {

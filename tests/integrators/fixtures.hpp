@@ -13,6 +13,14 @@ inline const Problem& valley() {
   return problem;
 }
 
+// a fixed step h to t_end, output at t_end only
+inline RunOptions fixed(double h, double t_end) {
+  RunOptions o;
+  o.h = h;
+  o.t_end = t_end;
+  return o;
+}
+
 // a fixed step h to t_end, with an output every dt
 inline RunOptions every(double dt, double t_end, double h) {
   RunOptions o;

@@ -18,14 +18,8 @@
 namespace rb {
 namespace {
 
+using testing::fixed;
 using testing::valley;
-
-RunOptions fixed(double h, double t_end) {
-  RunOptions o;
-  o.h = h;
-  o.t_end = t_end;
-  return o;
-}
 
 RunOptions adaptive(double tol, double t_end) {
   RunOptions o;

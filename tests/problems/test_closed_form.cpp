@@ -256,7 +256,9 @@ TEST(ClosedForm, ExactSolutionsMatchAFineRkmk4Run) {
       // rkmk4 at h = 1e-3 is accurate to ~1e-12 here; 1e-9 leaves room
       EXPECT_LT((contact_of(y) - e.alpha).norm(), 1e-9) << "t = " << r.output.t[i];
       EXPECT_LT((omega_of(p, y) - e.omega).norm(), 1e-9) << "t = " << r.output.t[i];
-      if (e.has_rotation) EXPECT_LT(rotation_angle_between(e.R, rotation_of(y)), 1e-9) << "t = " << r.output.t[i];
+      if (e.has_rotation) {
+        EXPECT_LT(rotation_angle_between(e.R, rotation_of(y)), 1e-9) << "t = " << r.output.t[i];
+      }
     }
   }
 }
