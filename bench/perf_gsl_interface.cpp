@@ -92,14 +92,27 @@ void BM_gsl_rk4_paired(benchmark::State& state) {
   const rb::Integrator& method = rb::find_integrator("gsl-rk4");
   const rb::RunOptions o = options();
   double interface_s = 0.0, direct_s = 0.0;
-  for (auto _ : state) {
+  const auto time_interface = [&] {
     const double t0 = thread_cpu_seconds();
     benchmark::DoNotOptimize(run_interface(method, o));
-    const double t1 = thread_cpu_seconds();
+    interface_s += thread_cpu_seconds() - t0;
+  };
+  const auto time_direct = [&] {
+    const double t0 = thread_cpu_seconds();
     benchmark::DoNotOptimize(run_direct());
-    const double t2 = thread_cpu_seconds();
-    interface_s += t1 - t0;
-    direct_s += t2 - t1;
+    direct_s += thread_cpu_seconds() - t0;
+  };
+  // which runs first swaps every iteration, so neither always follows the other
+  bool interface_first = true;
+  for (auto _ : state) {
+    if (interface_first) {
+      time_interface();
+      time_direct();
+    } else {
+      time_direct();
+      time_interface();
+    }
+    interface_first = !interface_first;
   }
   const double steps = static_cast<double>(kSteps) * static_cast<double>(state.iterations());
   state.counters["interface_ns_per_step"] = interface_s * 1e9 / steps;
