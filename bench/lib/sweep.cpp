@@ -1,5 +1,6 @@
 #include "bench/lib/sweep.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -164,12 +165,13 @@ std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepS
   std::vector<RunRecord> records(tasks.size());
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
-  auto report = [&](const char* phase, std::size_t done, std::size_t total, clock::time_point since) {
+  auto report = [&](const char* phase, std::size_t done, std::size_t total, clock::time_point since,
+                    const char* unit = "runs") {
     const double elapsed = std::chrono::duration<double>(clock::now() - since).count();
     const double eta = done > 0 ? elapsed / static_cast<double>(done) * static_cast<double>(total - done) : 0.0;
     std::ostringstream s;
     s.precision(3);
-    s << phase << ": " << done << "/" << total << " runs, " << elapsed << " s elapsed, about " << eta << " s left";
+    s << phase << ": " << done << "/" << total << " " << unit << ", " << elapsed << " s elapsed, about " << eta << " s left";
     progress(s.str());
   };
 
@@ -193,31 +195,45 @@ std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepS
   }
   for (auto& t : pool) t.join();
 
-  // timing: one run at a time on this thread
+  // timing: one run at a time on this thread, in rounds: round k times
+  // repeat k of every run still within its budget, so that a slow spell of
+  // this shared machine falls on every method alike and the median over
+  // repeats leaves it out. Each timed call follows an untimed one of the
+  // same run, so its code and data are as warm as in a repeat-by-repeat loop.
   const auto timing_start = clock::now();
   last_report = timing_start;
-  for (std::size_t i = 0; i < tasks.size(); ++i) {
-    const SweepScene& s = scenes[tasks[i].scene];
-    const Integrator& m = find_integrator(tasks[i].integrator);
-    const RunOptions o = options_of(s, tasks[i], spec.max_steps);
-    double spent = 0.0;
-    for (int k = 0; k < spec.repeats && (k == 0 || spent < spec.repeat_budget_s); ++k) {
+  std::vector<RunOptions> opts;
+  for (const SweepTask& task : tasks) opts.push_back(options_of(scenes[task.scene], task, spec.max_steps));
+  std::vector<double> spent(tasks.size(), 0.0);
+  const long total = static_cast<long>(tasks.size()) * spec.repeats;
+  long timed = 0;
+  for (int k = 0; k < spec.repeats; ++k) {
+    for (std::size_t i = 0; i < tasks.size(); ++i) {
+      if (k > 0 && spent[i] >= spec.repeat_budget_s) continue;
+      const Problem& problem = scenes[tasks[i].scene].problem;
+      const Integrator& m = find_integrator(tasks[i].integrator);
+      auto call = [&] {
+        try {
+          m.integrate(problem, opts[i]);
+        } catch (const std::exception&) {
+          // already recorded as a failed run
+        }
+      };
+      call();
       const auto t0 = clock::now();
-      try {
-        m.integrate(s.problem, o);
-      } catch (const std::exception&) {
-        // already recorded as a failed run
-      }
+      call();
       const double dt = std::chrono::duration<double>(clock::now() - t0).count();
       records[i].wall_samples.push_back(dt);
-      spent += dt;
-    }
-    if (clock::now() - last_report > std::chrono::seconds(2)) {
-      report("timing", i + 1, tasks.size(), timing_start);
-      last_report = clock::now();
+      spent[i] += dt;
+      ++timed;
+      if (clock::now() - last_report > std::chrono::seconds(2)) {
+        report("timing", static_cast<std::size_t>(timed), static_cast<std::size_t>(total), timing_start,
+               "timed repeats (at most)");
+        last_report = clock::now();
+      }
     }
   }
-  report("timing", tasks.size(), tasks.size(), timing_start);
+  report("timing", static_cast<std::size_t>(timed), static_cast<std::size_t>(timed), timing_start, "timed repeats");
   return records;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // The sweep: every (scene, integrator, h or tolerance) run once for accuracy
-// (in parallel over --jobs threads), then timed alone, repeat by repeat, on
-// one thread so that timings are not disturbed. A failing run is a record
+// (in parallel over --jobs threads), then timed alone on one thread so that
+// timings are not disturbed, in rounds of one repeat of every run. A failing run is a record
 // with its status, cost and the time it reached; nothing stops the sweep.
 #include <functional>
 #include <limits>

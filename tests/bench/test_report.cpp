@@ -2,6 +2,8 @@
 // observed orders, its references, failures as data, and sharding.
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include "bench/lib/report.hpp"
 #include "problems/input_error.hpp"
 
@@ -141,6 +143,26 @@ json without_timings(json r) {
   for (json& run : r["runs"]) run.erase("wall_s");
   for (json& d : r["stability"]["drift"]) d.erase("wall_s");
   return r;
+}
+
+// Timing runs in rounds of one repeat of every run: each run gets its
+// repeats while within its budget, at least one, none when asked for none.
+TEST(Report, EveryRunGetsItsRepeatsWithinItsBudget) {
+  const auto quiet = [](const std::string&) {};
+  SweepSpec spec = quick_once();
+  spec.scenes = {"plane"};
+  spec.integrators = {"rk4", "odeint-dopri5-adaptive"};
+  const std::vector<SweepScene> scenes = prepare_scenes(spec);
+  for (const auto& [repeats, budget, want] : {std::tuple{3, 100.0, 3u}, {3, 0.0, 1u}, {0, 100.0, 0u}}) {
+    spec.repeats = repeats;
+    spec.repeat_budget_s = budget;
+    const std::vector<RunRecord> runs = run_sweep(spec, scenes, quiet);
+    ASSERT_FALSE(runs.empty());
+    for (const RunRecord& r : runs) {
+      EXPECT_EQ(r.wall_samples.size(), want) << r.integrator << ", repeats " << repeats << ", budget " << budget;
+      for (const double w : r.wall_samples) EXPECT_GT(w, 0.0);
+    }
+  }
 }
 
 TEST(Report, MergedShardsEqualTheUnshardedReport) {
