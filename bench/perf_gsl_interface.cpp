@@ -15,8 +15,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 
-#include <time.h>
-
+#include "bench/side_by_side.hpp"
 #include "integrators/gsl.hpp"
 #include "integrators/registry.hpp"
 #include "problems/scene.hpp"
@@ -81,43 +80,20 @@ void BM_gsl_rk4_direct(benchmark::State& state) {
   set_ns_per_step(state);
 }
 
-// CPU seconds this thread has used.
-double thread_cpu_seconds() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
 void BM_gsl_rk4_paired(benchmark::State& state) {
   const rb::Integrator& method = rb::find_integrator("gsl-rk4");
   const rb::RunOptions o = options();
-  double interface_s = 0.0, direct_s = 0.0;
-  const auto time_interface = [&] {
-    const double t0 = thread_cpu_seconds();
-    benchmark::DoNotOptimize(run_interface(method, o));
-    interface_s += thread_cpu_seconds() - t0;
-  };
-  const auto time_direct = [&] {
-    const double t0 = thread_cpu_seconds();
-    benchmark::DoNotOptimize(run_direct());
-    direct_s += thread_cpu_seconds() - t0;
-  };
-  // which runs first swaps every iteration, so neither always follows the other
-  bool interface_first = true;
-  for (auto _ : state) {
-    if (interface_first) {
-      time_interface();
-      time_direct();
+  const std::vector<double> ns = rb::bench::cpu_ns_in_rotation(state, 2, [&](int i) {
+    if (i == 0) {
+      benchmark::DoNotOptimize(run_interface(method, o));
     } else {
-      time_direct();
-      time_interface();
+      benchmark::DoNotOptimize(run_direct());
     }
-    interface_first = !interface_first;
-  }
+  });
   const double steps = static_cast<double>(kSteps) * static_cast<double>(state.iterations());
-  state.counters["interface_ns_per_step"] = interface_s * 1e9 / steps;
-  state.counters["direct_ns_per_step"] = direct_s * 1e9 / steps;
-  state.counters["interface_over_direct"] = interface_s / direct_s;
+  state.counters["interface_ns_per_step"] = ns[0] / steps;
+  state.counters["direct_ns_per_step"] = ns[1] / steps;
+  state.counters["interface_over_direct"] = ns[0] / ns[1];
 }
 
 }  // namespace

@@ -12,12 +12,12 @@
 // Counter ns_per_step everywhere. Run with --benchmark_out=FILE.json.
 #include <benchmark/benchmark.h>
 
-#include <chrono>
 #include <functional>
 
 #include <boost/numeric/odeint/integrate/integrate_n_steps.hpp>
 #include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
 
+#include "bench/side_by_side.hpp"
 #include "integrators/odeint.hpp"
 #include "integrators/registry.hpp"
 #include "problems/scene.hpp"
@@ -114,39 +114,23 @@ void direct_checked(benchmark::State& state) {
   per_step(state, kSteps);
 }
 
-// both, alternating, so that clock and cache drift hit them alike; which
-// runs first swaps every iteration, so neither always follows the other
+// both, alternating, so that clock and cache drift hit them alike
+// (bench/side_by_side.hpp), in thread CPU time
 void interface_vs_direct(benchmark::State& state) {
-  using clock = std::chrono::steady_clock;
-  double t_interface = 0.0, t_direct = 0.0;
-  const auto time_interface = [&] {
-    const auto a = clock::now();
-    const rb::RunResult run = run_interface();
-    benchmark::DoNotOptimize(run.final_state.data());
-    t_interface += std::chrono::duration<double, std::nano>(clock::now() - a).count();
-  };
-  const auto time_direct = [&] {
-    const auto a = clock::now();
-    long evals = 0;
-    OdeintState x = run_direct(evals);
-    benchmark::DoNotOptimize(x.data());
-    t_direct += std::chrono::duration<double, std::nano>(clock::now() - a).count();
-  };
-  bool interface_first = true;
-  for (auto _ : state) {
-    if (interface_first) {
-      time_interface();
-      time_direct();
+  const std::vector<double> ns = rb::bench::cpu_ns_in_rotation(state, 2, [](int i) {
+    if (i == 0) {
+      const rb::RunResult run = run_interface();
+      benchmark::DoNotOptimize(run.final_state.data());
     } else {
-      time_direct();
-      time_interface();
+      long evals = 0;
+      OdeintState x = run_direct(evals);
+      benchmark::DoNotOptimize(x.data());
     }
-    interface_first = !interface_first;
-  }
+  });
   const double steps = static_cast<double>(kSteps) * static_cast<double>(state.iterations());
-  state.counters["interface_ns_per_step"] = t_interface / steps;
-  state.counters["direct_ns_per_step"] = t_direct / steps;
-  state.counters["overhead"] = t_interface / t_direct - 1.0;
+  state.counters["interface_ns_per_step"] = ns[0] / steps;
+  state.counters["direct_ns_per_step"] = ns[1] / steps;
+  state.counters["overhead"] = ns[0] / ns[1] - 1.0;
 }
 
 }  // namespace

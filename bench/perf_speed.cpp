@@ -21,9 +21,8 @@
 #include <string>
 #include <vector>
 
-#include <time.h>
-
 #include "bench/hand_coded_valley.hpp"
+#include "bench/side_by_side.hpp"
 #include "integrators/gsl.hpp"
 #include "integrators/registry.hpp"
 #include "problems/scene.hpp"
@@ -105,20 +104,14 @@ constexpr Named kVariants[] = {{"rk4", rk4},
                                {"gsl-rk4", gsl_rk4}};
 constexpr int kCount = sizeof kVariants / sizeof kVariants[0];
 
-// This thread's CPU time in ns: unlike wall time, it leaves out the time the
-// thread waits for a core, which on a shared machine is most of the noise.
-double cpu_ns() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return 1e9 * static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec);
-}
+using rb::bench::thread_cpu_ns;
 
 void single(benchmark::State& state, Variant run) {
   double ns = 0.0;
   for (auto _ : state) {
-    const double a = cpu_ns();
+    const double a = thread_cpu_ns();
     benchmark::DoNotOptimize(run());
-    ns += cpu_ns() - a;
+    ns += thread_cpu_ns() - a;
   }
   state.counters["ns_per_step"] = ns / (static_cast<double>(kSteps) * static_cast<double>(state.iterations()));
 }
@@ -135,17 +128,8 @@ constexpr Ratio kRatios[] = {{"rk4_over_hand", 0, 1},
                              {"rkmk4_over_rk4", 2, 0}};
 
 void side_by_side(benchmark::State& state) {
-  double ns[kCount] = {};
-  long round = 0;
-  for (auto _ : state) {
-    for (int k = 0; k < kCount; ++k) {
-      const int i = static_cast<int>((round + k) % kCount);
-      const double a = cpu_ns();
-      benchmark::DoNotOptimize(kVariants[i].run());
-      ns[i] += cpu_ns() - a;
-    }
-    ++round;
-  }
+  const std::vector<double> ns =
+      rb::bench::cpu_ns_in_rotation(state, kCount, [](int i) { benchmark::DoNotOptimize(kVariants[i].run()); });
   const double steps = static_cast<double>(kSteps) * static_cast<double>(state.iterations());
   for (int i = 0; i < kCount; ++i) state.counters[std::string(kVariants[i].name) + "_ns"] = ns[i] / steps;
   for (const Ratio& r : kRatios) state.counters[r.counter] = ns[r.num] / ns[r.den];
