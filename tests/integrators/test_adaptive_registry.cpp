@@ -5,12 +5,12 @@
 // new test.
 #include <gtest/gtest.h>
 
-#include <cctype>
 #include <map>
 
 #include "integrators/registry.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"
+#include "tests/registry_names.hpp"
 
 namespace rb {
 namespace {
@@ -99,12 +99,7 @@ TEST_P(AdaptiveRegistry, MaxStepsStopsTheRunEarly) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AdaptiveRegistryAll, AdaptiveRegistry, ::testing::ValuesIn(adaptive_names()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           std::string name = info.param;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
-                         });
+                         testing::registry_test_name);
 
 }  // namespace
 }  // namespace rb

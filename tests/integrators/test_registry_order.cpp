@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cctype>
 #include <sstream>
 
 #include "problems/input_error.hpp"
@@ -13,6 +12,7 @@
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"
 #include "tests/integrators/fixtures.hpp"
+#include "tests/registry_names.hpp"
 
 namespace rb {
 namespace {
@@ -68,12 +68,7 @@ TEST_P(RegistryOrder, ObservedOrderWithinPointTwoOfDeclared) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllRegistered, RegistryOrder, ::testing::ValuesIn(fixed_step_names()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           std::string name = info.param;
-                           for (char& ch : name)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return name;
-                         });
+                         testing::registry_test_name);
 
 TEST(RegistryOrder, SeminarSignErrorCostsAnOrderInRotationOnly) {
   const Integrator& seminar = find_integrator("rkmk4-seminar");

@@ -4,11 +4,11 @@
 // row before the stop, and a sweep over the failing cases must record every
 // run. The registry is read, never listed: a new family is tested as soon
 // as it registers.
-#include <cctype>
 #include <cmath>
 
 #include "bench/lib/report.hpp"
 #include "bench/lib/sweep.hpp"
+#include "tests/registry_names.hpp"
 #include "tests/robustness/helpers.hpp"
 
 namespace rb::robustness {
@@ -70,13 +70,6 @@ std::vector<std::string> adaptive_representatives() {
   return names;
 }
 
-std::string test_name(const ::testing::TestParamInfo<std::string>& info) {
-  std::string s = info.param;
-  for (char& c : s)
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  return s;
-}
-
 TEST_P(FamilyFailures, LeavingTheModelEndsWithItsStatus) {
   const Integrator& m = method();
   for (const StopCase& c : kStopScenes) {
@@ -117,9 +110,10 @@ TEST_P(AdaptiveFailures, ToleranceBelowRoundingIsStepUnderflow) {
   EXPECT_EQ(r.final_state, p.y0());
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryFamily, FamilyFailures, ::testing::ValuesIn(representatives()), test_name);
+INSTANTIATE_TEST_SUITE_P(EveryFamily, FamilyFailures, ::testing::ValuesIn(representatives()),
+                         rb::testing::registry_test_name);
 INSTANTIATE_TEST_SUITE_P(EveryAdaptiveFamily, AdaptiveFailures, ::testing::ValuesIn(adaptive_representatives()),
-                         test_name);
+                         rb::testing::registry_test_name);
 
 // A trial step that overshoots the landscape's edge (x > 1 in
 // stop-nonfinite, reached near t = 1.29) gives a non-finite error estimate:
