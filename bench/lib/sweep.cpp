@@ -203,7 +203,11 @@ std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepS
   const auto timing_start = clock::now();
   last_report = timing_start;
   std::vector<RunOptions> opts;
-  for (const SweepTask& task : tasks) opts.push_back(options_of(scenes[task.scene], task, spec.max_steps));
+  std::vector<const Integrator*> methods;
+  for (const SweepTask& task : tasks) {
+    opts.push_back(options_of(scenes[task.scene], task, spec.max_steps));
+    methods.push_back(&find_integrator(task.integrator));
+  }
   std::vector<double> spent(tasks.size(), 0.0);
   const long total = static_cast<long>(tasks.size()) * spec.repeats;
   long timed = 0;
@@ -211,10 +215,9 @@ std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepS
     for (std::size_t i = 0; i < tasks.size(); ++i) {
       if (k > 0 && spent[i] >= spec.repeat_budget_s) continue;
       const Problem& problem = scenes[tasks[i].scene].problem;
-      const Integrator& m = find_integrator(tasks[i].integrator);
       auto call = [&] {
         try {
-          m.integrate(problem, opts[i]);
+          methods[i]->integrate(problem, opts[i]);
         } catch (const std::exception&) {
           // already recorded as a failed run
         }
