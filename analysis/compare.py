@@ -6,7 +6,7 @@
 For each (scene, integrator, step size or tolerance) in both reports: the
 change in status, error, drift and wall time, and per (scene, integrator)
 the change in observed order. Time counts as changed only when a
-Mann–Whitney U test over the raw samples gives p < 0.01 and the medians
+Mann–Whitney U test (SciPy) over the raw samples gives p < 0.01 and the medians
 differ by more than 5 %, so that timing noise is not reported as change.
 Errors and drift are deterministic: a relative change over 5 % counts,
 except between values that both sit at rounding level. Prints a table of
@@ -18,11 +18,11 @@ import os
 import sys
 
 import numpy as np
+from scipy import stats
 
 if __package__ in (None, ""):
     sys.path[0] = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
-from analysis import ranktest  # noqa: E402
 from analysis import report as rp  # noqa: E402
 
 ALPHA = 0.01
@@ -72,7 +72,10 @@ def time_change(a, b):
         return (mb / ma if ma > 0 else math.nan), math.nan, False
     ma, mb = float(np.median(sa)), float(np.median(sb))
     ratio = mb / ma if ma > 0 else math.nan
-    _, p = ranktest.mann_whitney(sa, sb)
+    # exact distribution for small samples without ties, else the normal approximation
+    p = float(stats.mannwhitneyu(sa, sb, alternative="two-sided", method="auto").pvalue)
+    if not math.isfinite(p):
+        p = 1.0  # every sample equal: nothing to conclude
     changed = p < ALPHA and math.isfinite(ratio) and abs(ratio - 1.0) > TIME_RATIO
     return ratio, p, changed
 
@@ -82,7 +85,7 @@ def compare_runs(a, b):
     changes = []
     if a.get("status") != b.get("status"):
         changes.append(("status", f"{a.get('status')} → {b.get('status')}"))
-    for c in rp.COMPONENTS:
+    for c in rp.METRICS:
         text = _value_change(_error_value(a, c), _error_value(b, c), VALUE_RATIO, ROUNDING["error"])
         if text:
             changes.append((f"error.{c}", text))
@@ -96,7 +99,7 @@ def compare_runs(a, b):
     if changed:
         changes.append(("time", f"×{ratio:.3g} {'slower' if ratio > 1 else 'faster'} (p = {p:.2g})"))
     return {"key": run_key(a), "status": (a.get("status"), b.get("status")),
-            "contact": (rp.error(a, "contact"), rp.error(b, "contact")),
+            "worst": (rp.error(a, "worst"), rp.error(b, "worst")),
             "energy": (rp.num((a.get("drift") or {}).get("energy")), rp.num((b.get("drift") or {}).get("energy"))),
             "time": (rp.wall(a), rp.wall(b)), "ratio": ratio, "p": p, "changes": changes}
 
@@ -160,11 +163,11 @@ def format_markdown(result, name_a="A", name_b="B", every_row=False):
         rows = []
         for r in result["runs"]:
             rows.append([*r["key"], " → ".join(str(s) for s in r["status"]),
-                         " → ".join(_fmt(v) for v in r["contact"]), " → ".join(_fmt(v) for v in r["energy"]),
+                         " → ".join(_fmt(v) for v in r["worst"]), " → ".join(_fmt(v) for v in r["energy"]),
                          " → ".join(_fmt(v) for v in r["time"]), _fmt(r["ratio"]), _fmt(r["p"]),
                          "; ".join(kind for kind, _ in r["changes"]) or "—"])
         lines += ["## Every run", ""]
-        lines += _table(["scene", "integrator", "setting", "status", "contact error", "energy drift",
+        lines += _table(["scene", "integrator", "setting", "status", "worst error", "energy drift",
                          "time (s)", "time ratio", "p", "changed"], rows)
         lines.append("")
     return "\n".join(lines)

@@ -1,4 +1,4 @@
-"""Per-scene figures: convergence, work-precision, drift.
+"""Per-scene figures: convergence and drift (work–precision: figures_precision.py).
 
 Each function takes a loaded report, a scene and a style.Palette and returns
 a matplotlib Figure (built without pyplot, so no global state piles up), or
@@ -16,7 +16,6 @@ from matplotlib.figure import Figure  # noqa: E402
 import numpy as np  # noqa: E402
 
 from analysis import report as rp  # noqa: E402
-from analysis import summary  # noqa: E402
 
 FLOOR_COLOUR = "#bbbbbb"
 BLOW_UP = 1e4  # drift above this is a blow-up; the axes stop there
@@ -174,45 +173,6 @@ def convergence(report, scene, palette):
         legend_right(ax, title="observed order p (fit)")
     axes[-1].set_xlabel("step size h (s)")
     power_of_two_ticks(axes[-1], [rp.num(r.get("h")) for r in fixed])
-    return fig
-
-
-def _cost_axes_label(kind):
-    return "wall time per run, median (s)" if kind == "time" else "right-hand-side evaluations"
-
-
-def work_precision(report, scene, palette, metric=summary.METRIC):
-    """Error against wall time (left) and rhs evaluations (right), fixed-step and adaptive together."""
-    runs = rp.runs(report, scene)
-    if not runs:
-        raise NothingToPlot(f"no runs for scene {scene}")
-    floor = rp.floor(report, scene)
-    names = rp.integrators(runs)
-    fig = new_figure(12, max(5.2, 1.2 + 0.16 * (len(names) if len(names) <= 16 else len(names) / 2)))
-    axes = fig.subplots(1, 2, sharey=True)
-    for ax, (kind, _, cost_of) in zip(axes, summary.COSTS):
-        for name in names:
-            mine = [r for r in runs if r["integrator"] == name]
-            points = summary.curve(mine, cost_of, metric, floor)
-            style = palette.style(name)
-            adaptive = bool(mine[0]["adaptive"])
-            suffix = " (adaptive)" if adaptive and "adaptive" not in name else ""
-            ax.plot([c for c, _ in points], [e for _, e in points], label=name + suffix,
-                    markersize=4.5, linewidth=1.3, markerfacecolor="none" if adaptive else style["color"], **style)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel(_cost_axes_label(kind))
-        ax.grid(True, which="major", alpha=0.3)
-        ax.set_title(f"{scene}: {metric}-point error against {'wall time' if kind == 'time' else 'rhs evaluations'}",
-                     fontsize=10)
-        if not empty_log_axes(ax, "no successful run with a measured error"):
-            shade_floor(ax, floor, side="left")
-            # the accuracies summary.md reads the costs at
-            for target in summary.TARGETS:
-                ax.axhline(target, color="#999999", linewidth=0.7, linestyle=":", zorder=0.5)
-    axes[0].set_ylabel(f"{metric}-point error (m)")
-    targets = ", ".join(f"{t:g}" for t in summary.TARGETS)
-    legend_right(axes[1], title=f"hollow markers: adaptive\ndotted: {targets} (summary.md)")
     return fig
 
 

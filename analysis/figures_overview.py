@@ -6,13 +6,14 @@ import os
 
 import numpy as np
 
-from analysis import formula
+from analysis import landscape
 from analysis import report as rp
 from analysis import style as st
 from analysis.figures import NothingToPlot, new_figure
 
 SCENE_MARKERS = ["o", "s", "^", "D", "v", "P", "X", "*", "<", ">"]
 STATUS_ORDER = list(st.STATUS_COLOURS)
+GRID = 220  # landscape points per axis
 
 
 def _colour_ticklabels(ax, names, palette):
@@ -23,8 +24,8 @@ def _colour_ticklabels(ax, names, palette):
 def _largest_stable_panel(ax, entries, palette):
     names = rp.integrators(entries)
     scenes = rp.unique(e["scene"] for e in entries)
-    known = [rp.num(e.get("h")) for e in entries if math.isfinite(rp.num(e.get("h")))]
-    tried = [rp.num(t.get("h")) for e in entries for t in (e.get("tried") or [])]
+    known = [rp.num(e.get("h_stable")) for e in entries if math.isfinite(rp.num(e.get("h_stable")))]
+    tried = [rp.num(t) for e in entries for t in (e.get("h_tested") or [])]
     smallest = min([h for h in known + tried if math.isfinite(h) and h > 0] or [1e-3])
     none_x = smallest / 4  # where "no stable step found" is drawn, left of every real step
     offsets = np.linspace(-0.25, 0.25, len(scenes)) if len(scenes) > 1 else [0.0]
@@ -32,7 +33,7 @@ def _largest_stable_panel(ax, entries, palette):
         marker = SCENE_MARKERS[j % len(SCENE_MARKERS)]
         for e in (e for e in entries if e["scene"] == scene):
             y = names.index(e["integrator"]) + offsets[j]
-            h = rp.num(e.get("h"))
+            h = rp.num(e.get("h_stable"))
             colour = palette.colour(e["integrator"])
             if math.isfinite(h):
                 ax.plot([h], [y], marker=marker, color=colour, markersize=7, linestyle="none")
@@ -40,18 +41,18 @@ def _largest_stable_panel(ax, entries, palette):
             else:
                 ax.plot([none_x], [y], marker="x", color=colour, markersize=7, linestyle="none")
         ax.plot([], [], marker=marker, color="black", linestyle="none", label=scene)
-    ax.plot([], [], marker="x", color="black", linestyle="none", label="none within thresholds")
+    ax.plot([], [], marker="x", color="black", linestyle="none", label="no tested step passes")
     ax.axvline(none_x * 1.5, color="#999999", linewidth=0.7, linestyle=":")
     ax.set_xscale("log")
     ax.set_yticks(range(len(names)), names, fontsize=8)
     _colour_ticklabels(ax, names, palette)
     ax.set_ylim(len(names) - 0.5, -0.5)
-    ax.set_xlabel("largest stable step h (s)")
+    ax.set_xlabel("largest stable step h (s): it and every smaller tested step pass")
     ax.grid(True, axis="x", which="major", alpha=0.3)
     thresholds = (entries[0].get("thresholds") or {})
-    detail = ", ".join(f"{k} ≤ {v:g}" for k, v in thresholds.items())
-    ax.set_title("largest stable step per method and scene" + (f"\n(finite, {detail})" if detail else ""),
-                 fontsize=10)
+    detail = ", ".join(f"{k} ≤ {v:g}" for k, v in thresholds.items() if isinstance(v, (int, float)))
+    ax.set_title("largest stable step per method and scene" + (f"\n(finite, {detail})" if detail else "")
+                 + "\nrotation defect there: summary.md", fontsize=10)
     ax.text(none_x, -0.6, "none", ha="center", va="bottom", fontsize=7, color="#666666")
 
 
@@ -116,18 +117,18 @@ def stability(report, palette):
 
 # -- scenes --------------------------------------------------------------------
 
-def read_trajectory(path):
-    """t, x, y columns of a trajectory CSV (FORMATS.md), by header name."""
+def read_trajectory(path, columns=("t", "x", "y")):
+    """Some columns of a trajectory CSV (docs/formats.md), by header name: {name: array}."""
     with open(path, newline="", encoding="utf-8") as f:
         reader = csv.reader(f)
         header = [h.strip() for h in next(reader)]
-        for key in ("t", "x", "y"):
+        for key in columns:
             if key not in header:
                 raise ValueError(f"{path}: trajectory CSV has no column '{key}'")
         rows = np.array([[float(v) for v in row] for row in reader if row], dtype=float)
     if rows.size == 0:
         raise ValueError(f"{path}: trajectory CSV has no rows")
-    return {k: rows[:, header.index(k)] for k in ("t", "x", "y")}
+    return {k: rows[:, header.index(k)] for k in columns}
 
 
 def _extent(scene, path):
@@ -146,11 +147,10 @@ def _extent(scene, path):
     return [start[0] - 1.0, start[0] + 1.0, start[1] - 1.0, start[1] + 1.0]
 
 
-def _scene_panel(ax, fig, scene, path):
-    landscape = formula.Landscape(scene["landscape"], scene.get("params"))
-    x0, x1, y0, y1 = _extent(scene, path)
-    gx, gy = np.meshgrid(np.linspace(x0, x1, 220), np.linspace(y0, y1, 220))
-    z = np.ma.masked_invalid(landscape(gx, gy))
+def _scene_panel(ax, fig, scene, path, values):
+    gx, gy, z = values
+    x0, x1, y0, y1 = gx.min(), gx.max(), gy.min(), gy.max()
+    z = np.ma.masked_invalid(z)
     if z.count() == 0:
         ax.text(0.5, 0.5, "landscape undefined here", transform=ax.transAxes, ha="center")
     elif np.ptp(z.compressed()) == 0:
@@ -183,10 +183,11 @@ def _scene_panel(ax, fig, scene, path):
                 va="top", bbox={"facecolor": "white", "alpha": 0.7, "linewidth": 0})
 
 
-def scenes(report, scene_dir, trajectory_dir=None, messages=None):
+def scenes(report, scene_dir, trajectory_dir=None, messages=None, rollbench=landscape.DEFAULT_ROLLBENCH):
     """Each scene's landscape as shaded contours, with the contact-point path where a CSV is given.
 
-    Scenes whose JSON cannot be read are left out with a line in messages.
+    The heights come from `rollbench landscape`; scenes whose JSON cannot be
+    read, or that rollbench refuses, are left out with a line in messages.
     """
     messages = messages if messages is not None else []
     if not rp.scenes(report):
@@ -197,9 +198,8 @@ def scenes(report, scene_dir, trajectory_dir=None, messages=None):
         try:
             with open(path, encoding="utf-8") as f:
                 scene = json.load(f)
-            if not isinstance(scene.get("landscape"), str):
+            if not isinstance(scene, dict) or not isinstance(scene.get("landscape"), str):
                 raise ValueError("no key 'landscape'")
-            formula.parse(scene["landscape"], scene.get("params"))
         except (OSError, ValueError) as e:
             messages.append(f"scenes.png: left out {name} ({path}: {e})")
             continue
@@ -210,15 +210,20 @@ def scenes(report, scene_dir, trajectory_dir=None, messages=None):
                 trajectory = read_trajectory(csv_path)
             except (OSError, ValueError, StopIteration) as e:
                 messages.append(f"scenes.png: no trajectory for {name} ({e})")
-        loaded.append((scene, trajectory))
+        try:
+            values = landscape.grid(path, GRID, GRID, _extent(scene, trajectory), rollbench)
+        except landscape.LandscapeError as e:
+            messages.append(f"scenes.png: left out {name} ({e})")
+            continue
+        loaded.append((scene, trajectory, values))
     if not loaded:
         raise NothingToPlot(f"no scene of the report could be read from {scene_dir}")
     cols = min(3, len(loaded))
     rows = math.ceil(len(loaded) / cols)
     fig = new_figure(5.0 * cols, 4.6 * rows)
     axes = np.atleast_1d(fig.subplots(rows, cols, squeeze=False)).ravel()
-    for ax, (scene, trajectory) in zip(axes, loaded):
-        _scene_panel(ax, fig, scene, trajectory)
+    for ax, (scene, trajectory, values) in zip(axes, loaded):
+        _scene_panel(ax, fig, scene, trajectory, values)
     for ax in axes[len(loaded):]:
         ax.set_visible(False)
     # one legend for all panels, under them, so that no path is covered
@@ -227,7 +232,7 @@ def scenes(report, scene_dir, trajectory_dir=None, messages=None):
                Line2D([], [], marker="o", color="white", markeredgecolor="black", linestyle="none",
                       markersize=7, label="start"),
                Line2D([], [], marker="s", color="black", linestyle="none", markersize=6, label="end")]
-    if not any(t is not None for _, t in loaded):
+    if not any(t is not None for _, t, _ in loaded):
         handles = handles[1:2]
     fig.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 0.02), ncol=3, fontsize=8,
                frameon=False)

@@ -1,13 +1,16 @@
 #!/usr/bin/python3
-"""Figures and summary.md from a rollbench report.
+"""Figures, summary.md and index.html from a rollbench report.
 
-    analysis/plot.py REPORT.json --out DIR [--perf PERF.json]
-                     [--trajectories DIR] [--scenes DIR]
+    analysis/plot.py REPORT.json --out DIR [--metric worst|contact|centre|omega|rotation]
+                     [--perf PERF.json] [--trajectories DIR] [--ball DIR] [--scenes DIR]
+                     [--rollbench PATH]
 
-Writes convergence-<scene>.png, work-precision-<scene>.png, drift-<scene>.png,
-stability.png, scenes.png, ns-per-step.png (with --perf) and summary.md.
-A figure whose data the report lacks is skipped with a message; the exit
-status is 0 unless the report cannot be read (2).
+Writes per scene convergence-, work-precision-, work-precision-best-,
+tolerance- and drift-<scene>.png; then stability.png, scenes.png,
+ball-deforms.png (with --ball), ns-per-step.png (with --perf), summary.md
+and index.html (every figure and the summary in one page). A figure whose
+data the report lacks is skipped with a message; the exit status is 0
+unless the input cannot be read (2).
 """
 import argparse
 import json
@@ -20,20 +23,31 @@ if __package__ in (None, ""):
     _root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     sys.path[0] = _root
 
-from analysis import figures, figures_overview, style, summary  # noqa: E402
+from analysis import figures, figures_ball, figures_overview, figures_precision, html, landscape  # noqa: E402
+from analysis import style, summary  # noqa: E402
 from analysis import report as rp  # noqa: E402
 
 DEFAULT_SCENES = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "problems", "scenes")
 
 
-def build_figures(report, perf=None, trajectories=None, scene_dir=DEFAULT_SCENES, messages=None):
+class Options:
+    """What the figures are drawn from beside the report."""
+
+    def __init__(self, metric=rp.DEFAULT_METRIC, perf=None, trajectories=None, ball=None,
+                 scene_dir=DEFAULT_SCENES, rollbench=landscape.DEFAULT_ROLLBENCH):
+        self.metric, self.perf, self.trajectories, self.ball = metric, perf, trajectories, ball
+        self.scene_dir, self.rollbench = scene_dir, rollbench
+
+
+def build_figures(report, options=None, messages=None, log=None):
     """{file name: Figure} for every figure the data allows; skipped ones go to messages."""
+    options = options or Options()
     messages = messages if messages is not None else []
     palette = style.Palette(rp.families(report))
-    if perf is not None:
+    if options.perf is not None:
         # benchmarks may name methods the report did not run: they get the unknown-family colour
         known = rp.families(report)
-        names = [e[1] for e in figures_overview.perf_entries(perf)]
+        names = [e[1] for e in figures_overview.perf_entries(options.perf)]
         palette = style.Palette({**{n: known.get(n) for n in names}, **known})
     out = {}
 
@@ -43,29 +57,40 @@ def build_figures(report, perf=None, trajectories=None, scene_dir=DEFAULT_SCENES
         except figures.NothingToPlot as e:
             messages.append(f"skipped {name}: {e}")
 
+    metric = options.metric
     scenes = rp.scenes(report)
     if not scenes:
         messages.append("the report has no runs and no stability results: no per-scene figures")
-    for scene in scenes:
+    for i, scene in enumerate(scenes):
+        if log:
+            log(f"figures for {scene} ({i + 1} of {len(scenes)})")
         attempt(f"convergence-{scene}.png", lambda: figures.convergence(report, scene, palette))
-        attempt(f"work-precision-{scene}.png", lambda: figures.work_precision(report, scene, palette))
+        attempt(f"work-precision-{scene}.png",
+                lambda: figures_precision.work_precision(report, scene, palette, metric))
+        attempt(f"work-precision-best-{scene}.png",
+                lambda: figures_precision.work_precision_best(report, scene, palette, metric))
+        attempt(f"tolerance-{scene}.png", lambda: figures_precision.tolerance(report, scene, palette, metric))
         attempt(f"drift-{scene}.png", lambda: figures.drift(report, scene, palette))
     attempt("stability.png", lambda: figures_overview.stability(report, palette))
-    attempt("scenes.png", lambda: figures_overview.scenes(report, scene_dir, trajectories, messages))
-    if perf is not None:
-        attempt("ns-per-step.png", lambda: figures_overview.ns_per_step(perf, palette))
+    attempt("scenes.png", lambda: figures_overview.scenes(report, options.scene_dir, options.trajectories,
+                                                          messages, options.rollbench))
+    if options.ball is not None:
+        attempt("ball-deforms.png", lambda: figures_ball.ball_deforms(options.ball))
+    if options.perf is not None:
+        attempt("ns-per-step.png", lambda: figures_overview.ns_per_step(options.perf, palette))
     return out
 
 
-def write_all(report, out_dir, perf=None, trajectories=None, scene_dir=DEFAULT_SCENES, log=print, figures_out=None):
-    """Writes every figure and summary.md into out_dir; returns the paths written.
+def write_all(report, out_dir, options=None, log=print, figures_out=None):
+    """Writes every figure, summary.md and index.html into out_dir; returns the paths written.
 
     figures_out, a dict, receives the Figures by file name (for tests).
     """
+    options = options or Options()
     os.makedirs(out_dir, exist_ok=True)
     messages = []
     written = []
-    built = build_figures(report, perf, trajectories, scene_dir, messages)
+    built = build_figures(report, options, messages, log)
     if figures_out is not None:
         figures_out.update(built)
     for name, fig in built.items():
@@ -78,10 +103,13 @@ def write_all(report, out_dir, perf=None, trajectories=None, scene_dir=DEFAULT_S
             messages.append(f"could not draw {name}: {e}")
             continue
         written.append(path)
-    path = os.path.join(out_dir, "summary.md")
-    with open(path, "w", encoding="utf-8") as f:
-        f.write(summary.summary_markdown(report))
-    written.append(path)
+    text = summary.summary_markdown(report, options.metric)
+    for name, content in (("summary.md", text),
+                          ("index.html", html.index_html([os.path.basename(p) for p in written], text))):
+        path = os.path.join(out_dir, name)
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(content)
+        written.append(path)
     for m in messages:
         log(m)
     for p in written:
@@ -91,11 +119,16 @@ def write_all(report, out_dir, perf=None, trajectories=None, scene_dir=DEFAULT_S
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("report", help="a rollbench.report/1 JSON file")
-    parser.add_argument("--out", required=True, help="folder for the figures and summary.md")
+    parser.add_argument("report", help=f"a {rp.SCHEMA} JSON file")
+    parser.add_argument("--out", required=True, help="folder for the figures, summary.md and index.html")
+    parser.add_argument("--metric", choices=rp.METRICS, default=rp.DEFAULT_METRIC,
+                        help="accuracy axis of the work-precision figures and cost tables (default: %(default)s)")
     parser.add_argument("--perf", help="Google Benchmark JSON (--benchmark_out) for ns-per-step.png")
     parser.add_argument("--trajectories", help="folder of <scene>.csv trajectories (rollbench trajectory)")
+    parser.add_argument("--ball", help="folder of euler.csv, rk4.csv, rkmk4.csv trajectories for ball-deforms.png")
     parser.add_argument("--scenes", default=DEFAULT_SCENES, help="folder of scene JSON files (default: %(default)s)")
+    parser.add_argument("--rollbench", default=landscape.DEFAULT_ROLLBENCH,
+                        help="the rollbench binary that evaluates the landscapes (default: %(default)s)")
     args = parser.parse_args(argv)
     try:
         report = rp.load(args.report)
@@ -112,7 +145,8 @@ def main(argv=None):
         except (OSError, ValueError) as e:
             print(f"error: cannot read the benchmark file '{args.perf}': {e}", file=sys.stderr)
             return 2
-    write_all(report, args.out, perf, args.trajectories, args.scenes)
+    write_all(report, args.out, Options(args.metric, perf, args.trajectories, args.ball, args.scenes,
+                                        args.rollbench))
     return 0
 
 

@@ -11,8 +11,19 @@ import math
 
 import numpy as np
 
-SCHEMA = "rollbench.report/1"
+SCHEMA = "rollbench.report/2"
 COMPONENTS = ("contact", "centre", "omega", "rotation")
+# accuracy axes a figure or table can use; "worst" (the largest of the
+# components, each made dimensionless) is the only one that sees R everywhere
+METRICS = ("worst",) + COMPONENTS
+DEFAULT_METRIC = "worst"
+METRIC_LABELS = {
+    "worst": "worst error (ball radii or rad)",
+    "contact": "contact-point error (m)",
+    "centre": "centre error (m)",
+    "omega": "angular-velocity error (rad/s)",
+    "rotation": "rotation error (rad)",
+}
 
 # keys without which an entry of a section means nothing
 REQUIRED = {
@@ -20,7 +31,8 @@ REQUIRED = {
     "orders": ("scene", "integrator"),
     "references": ("scene",),
     "stability.drift": ("scene", "integrator", "t"),
-    "stability.largest_stable_h": ("scene", "integrator"),
+    "stability.largest_stable_h": ("scene", "integrator", "h_stable"),
+    "tolerance_fits": ("scene", "integrator", "slope"),
 }
 
 
@@ -46,7 +58,8 @@ def validate(data, name="report"):
     if "schema" not in data:
         raise ReportError(f"{name}: missing key 'schema' (expected \"{SCHEMA}\")")
     if data["schema"] != SCHEMA:
-        raise ReportError(f"{name}: key 'schema' is {data['schema']!r}, this analysis reads \"{SCHEMA}\"")
+        raise ReportError(f"{name}: schema version {data['schema']!r} found, this analysis reads only "
+                          f"\"{SCHEMA}\" (re-run rollbench to write a current report)")
     for section, keys in REQUIRED.items():
         entries = section_entries(data, section, name)
         for i, entry in enumerate(entries):
@@ -153,11 +166,11 @@ def floor(report, scene):
     return value
 
 
-def error(run, component="contact"):
+def error(run, component=DEFAULT_METRIC):
     return num((run.get("error") or {}).get(component))
 
 
-def below_floor(run, component="contact"):
+def below_floor(run, component=DEFAULT_METRIC):
     return component in ((run.get("error") or {}).get("below_floor") or [])
 
 
@@ -190,43 +203,13 @@ def setting(run, digits=6):
 
 # -- orders --------------------------------------------------------------------
 
-def fit_order(h, e, floor_value=0.0):
-    """Least-squares slope of log e against log h over the points above 10 * floor.
-
-    For reports without an "orders" section; the runner's fit also trims the
-    pre-asymptotic end. Returns (slope, points), slope NaN with fewer than 3 points.
-    """
-    h, e = np.asarray(h, float), np.asarray(e, float)
-    keep = np.isfinite(h) & np.isfinite(e) & (h > 0) & (e > 10 * floor_value) & (e > 0)
-    if keep.sum() < 3:
-        return math.nan, int(keep.sum())
-    slope = np.polyfit(np.log(h[keep]), np.log(e[keep]), 1)[0]
-    return float(slope), int(keep.sum())
-
-
 def orders(report):
-    """Entries of "orders", or fitted here from the fixed-step runs when the section is absent.
+    """Entries of "orders", as the runner fitted them (never refitted here)."""
+    return section_entries(report, "orders")
 
-    Fitted entries carry "fitted_here": True.
-    """
-    given = section_entries(report, "orders")
-    if given:
-        return given
-    out = []
-    for scene in scenes(report):
-        fixed = runs(report, scene, adaptive=False)
-        for name in integrators(fixed):
-            group = [r for r in fixed if r["integrator"] == name and ok(r)]
-            first = next(r for r in fixed if r["integrator"] == name)
-            observed = {}
-            for c in COMPONENTS:
-                slope, _ = fit_order([num(r.get("h")) for r in group], [error(r, c) for r in group],
-                                     floor(report, scene))
-                observed[c] = None if math.isnan(slope) else slope
-            out.append({"scene": scene, "integrator": name, "declared": first.get("declared_order"),
-                        "declared_rotation": first.get("declared_rotation_order", first.get("declared_order")),
-                        "observed": observed, "fitted_here": True})
-    return out
+
+def tolerance_fits(report, scene=None):
+    return [f for f in section_entries(report, "tolerance_fits") if scene is None or f["scene"] == scene]
 
 
 def order_of(report, scene, integrator):
@@ -240,3 +223,9 @@ def observed(order, component):
     if not order:
         return math.nan
     return num((order.get("observed") or {}).get(component))
+
+
+def verdict(order, component):
+    """'as declared', 'lower' or 'inconclusive' as the runner decided; '—' when absent."""
+    value = (order.get("verdict") or {}).get(component) if order else None
+    return value if isinstance(value, str) and value else "—"

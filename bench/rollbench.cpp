@@ -89,6 +89,73 @@ int run_trajectory(const TrajectoryArgs& a) {
   return rb::exit_code_of(run.status);
 }
 
+struct LandscapeArgs {
+  std::string scene, grid, domain, out;
+};
+
+// Exactly `count` finite numbers separated by commas; InputError naming the option otherwise.
+std::vector<double> parse_exact_numbers(const std::string& text, std::size_t count, const std::string& option,
+                                        const std::string& expected) {
+  std::vector<double> values;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(v))
+      throw rb::InputError("expected " + expected + ", got '" + text + "'", option);
+    values.push_back(v);
+  }
+  if (values.size() != count || (!text.empty() && text.back() == ','))
+    throw rb::InputError("expected " + expected + ", got '" + text + "'", option);
+  return values;
+}
+
+// z = f(x, y) of a scene on an NX x NY grid, as CSV "x,y,z" with x running
+// fastest: the analysis draws the landscapes from these values, so no
+// second formula parser is needed there.
+int run_landscape(const LandscapeArgs& a) {
+  constexpr int max_points = 2048;  // per axis: plenty for a picture, bounded memory and time
+  const std::vector<double> grid = parse_exact_numbers(a.grid, 2, "grid", "NX,NY (two integers)");
+  for (double n : grid)
+    if (n != std::floor(n) || n < 2 || n > max_points)
+      throw rb::InputError("each of NX,NY must be an integer from 2 to " + std::to_string(max_points) + ", got '" +
+                               a.grid + "'",
+                           "grid");
+  const rb::Scene scene = rb::load_scene(a.scene);
+  rb::Domain box = scene.domain;
+  if (!a.domain.empty()) {
+    const std::vector<double> d = parse_exact_numbers(a.domain, 4, "domain", "xmin,xmax,ymin,ymax");
+    box = {d[0], d[1], d[2], d[3]};
+  } else if (!scene.has_domain) {
+    throw rb::InputError("scene '" + scene.name + "' has no domain: give one as xmin,xmax,ymin,ymax", "domain");
+  }
+  if (!(box.xmin < box.xmax && box.ymin < box.ymax))
+    throw rb::InputError("expected xmin < xmax and ymin < ymax", "domain");
+  const rb::RollingBall model = rb::make_model(scene);
+  std::ofstream file;
+  if (!a.out.empty()) {
+    file.open(a.out);
+    if (!file) throw rb::InputError("cannot open '" + a.out + "' for writing", "out");
+  }
+  std::ostream& out = a.out.empty() ? std::cout : file;
+  const int nx = static_cast<int>(grid[0]), ny = static_cast<int>(grid[1]);
+  out << "x,y,z\n";
+  char line[96];
+  for (int j = 0; j < ny; ++j) {
+    const double y = box.ymin + (box.ymax - box.ymin) * j / (ny - 1);
+    for (int i = 0; i < nx; ++i) {
+      const double x = box.xmin + (box.xmax - box.xmin) * i / (nx - 1);
+      // NaN where the formula is undefined (sqrt of a negative, ...): the plot masks it
+      std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g\n", x, y, model.landscape().height(x, y));
+      out << line;
+    }
+  }
+  out.flush();
+  if (!out) throw rb::InputError("could not write the grid", "out");
+  return 0;
+}
+
 struct RunArgs {
   std::string preset = "default", scenes, integrators, hs, tols, out, shard, cache;
   int repeats = -1, jobs = -1;
@@ -172,6 +239,13 @@ int main(int argc, char** argv) {
   trajectory->add_option("--t-end", traj.t_end, "end time (default: the scene's t_end)");
   trajectory->add_option("--out", traj.out, "the CSV file to write")->required();
 
+  LandscapeArgs land;
+  CLI::App* landscape = app.add_subcommand("landscape", "print z = f(x, y) of a scene on a grid (CSV x,y,z)");
+  landscape->add_option("scene", land.scene, "a shipped scene's name or a scene JSON file")->required();
+  landscape->add_option("--grid", land.grid, "NX,NY: points along x and y (2 to 2048 each)")->required();
+  landscape->add_option("--domain", land.domain, "xmin,xmax,ymin,ymax (default: the scene's domain)");
+  landscape->add_option("--out", land.out, "write the CSV here instead of standard output");
+
   RunArgs run;
   CLI::App* run_cmd = app.add_subcommand("run", "sweep scenes x integrators x h or tolerances into a JSON report");
   run_cmd->add_option("--preset", run.preset, "quick (CI), default (the main job) or full (a study)");
@@ -204,6 +278,7 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("list")) return run_list();
     if (app.got_subcommand("trajectory")) return run_trajectory(traj);
+    if (app.got_subcommand("landscape")) return run_landscape(land);
     if (app.got_subcommand("run")) return run_sweep_command(run);
     if (app.got_subcommand("merge")) return run_merge(merge_inputs, merge_out);
   } catch (const rb::InputError& e) {

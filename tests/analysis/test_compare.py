@@ -11,7 +11,7 @@ import unittest
 
 import numpy as np
 
-from analysis import compare, ranktest
+from analysis import compare
 from tests.analysis import synthetic as syn
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -97,6 +97,21 @@ class CompareReports(unittest.TestCase):
         kinds = [kind for _, kind, _ in compare.compare_reports(self.a, b)["changes"]]
         self.assertEqual(sorted(kinds), ["error.contact", "order.contact", "status"])
 
+    def test_a_report_of_another_schema_version_is_refused(self):
+        old = copy.deepcopy(self.a)
+        old["schema"] = "rollbench.report/1"
+        with tempfile.TemporaryDirectory() as tmp:
+            paths = [os.path.join(tmp, n) for n in ("old.json", "new.json")]
+            for path, report in zip(paths, (old, self.a)):
+                with open(path, "w", encoding="utf-8") as f:
+                    json.dump(report, f)
+            done = subprocess.run([sys.executable, os.path.join(ROOT, "analysis", "compare.py"), *paths],
+                                  capture_output=True, text=True)
+        self.assertEqual(done.returncode, 2)
+        self.assertIn("schema version 'rollbench.report/1' found, this analysis reads only "
+                      "\"rollbench.report/2\"", done.stderr)
+        self.assertIn("old.json", done.stderr)
+
     def test_rounding_level_drift_is_not_change(self):
         b = copy.deepcopy(self.a)
         for run in b["runs"]:
@@ -105,40 +120,33 @@ class CompareReports(unittest.TestCase):
         self.assertEqual(compare.compare_reports(self.a, b)["changes"], [])
 
 
-class MannWhitney(unittest.TestCase):
-    def test_exact_small_samples(self):
-        # 5 against 5, completely separated: p = 2 / C(10, 5)
-        u, p = ranktest.mann_whitney([1, 2, 3, 4, 5], [6, 7, 8, 9, 10])
-        self.assertEqual(u, 0.0)
-        self.assertAlmostEqual(p, 2 / math.comb(10, 5), places=15)
-        # 2 against 2 can never be significant
-        self.assertAlmostEqual(ranktest.mann_whitney([1, 2], [3, 4])[1], 2 / math.comb(4, 2), places=15)
+def timed(samples):
+    return {"wall_s": {"samples": list(samples), "median": float(np.median(samples))}}
 
-    def test_exact_distribution_counts_every_ordering(self):
-        for n1, n2 in ((1, 1), (3, 4), (6, 5)):
-            counts = np.array(ranktest._u_counts(n1, n2))
-            self.assertEqual(counts.sum(), math.comb(n1 + n2, n1))
-            np.testing.assert_array_equal(counts, counts[::-1])  # symmetric about n1 n2 / 2
+
+class TimeChange(unittest.TestCase):
+    """compare.time_change on raw samples (the rank test is SciPy's Mann-Whitney U)."""
+
+    def test_exact_small_samples(self):
+        # 5 against 5, completely separated: p = 2 / C(10, 5) (exact, not the normal approximation)
+        ratio, p, changed = compare.time_change(timed([1, 2, 3, 4, 5]), timed([6, 7, 8, 9, 10]))
+        self.assertAlmostEqual(p, 2 / math.comb(10, 5), places=15)
+        self.assertAlmostEqual(ratio, 8 / 3, places=15)
+        self.assertTrue(changed)
+        # 2 against 2 can never be significant
+        _, p, changed = compare.time_change(timed([1, 2]), timed([3, 4]))
+        self.assertAlmostEqual(p, 2 / math.comb(4, 2), places=15)
+        self.assertFalse(changed)
 
     def test_identical_samples(self):
-        self.assertEqual(ranktest.mann_whitney([1.0] * 5, [1.0] * 5)[1], 1.0)
-        self.assertEqual(ranktest.mann_whitney([1, 2, 3], [1, 2, 3])[1], 1.0)
-        self.assertEqual(ranktest.mann_whitney([], [1, 2])[1], 1.0)
-
-    def test_normal_approximation_with_ties(self):
-        # ties force the normal approximation; the U statistic is the count of pairs a > b (+1/2 per tie)
-        a, b = [1, 2, 2, 3, 3, 3, 4], [2, 3, 4, 4, 5, 5, 6]
-        u, p = ranktest.mann_whitney(a, b)
-        pairs = sum((x > y) + 0.5 * (x == y) for x in a for y in b)
-        self.assertEqual(u, pairs)
-        self.assertTrue(0.01 < p < 0.1)
-        self.assertAlmostEqual(ranktest.mann_whitney(b, a)[1], p, places=15)
+        self.assertEqual(compare.time_change(timed([1.0] * 5), timed([1.0] * 5))[1:], (1.0, False))
+        self.assertEqual(compare.time_change(timed([1, 2, 3]), timed([1, 2, 3]))[1:], (1.0, False))
 
     def test_large_samples_separate_shifted_distributions(self):
         rng = np.random.default_rng(3)
         a = rng.lognormal(0.0, 0.1, 40)
-        self.assertLess(ranktest.mann_whitney(a, a * 1.2)[1], 1e-6)
-        self.assertGreater(ranktest.mann_whitney(a, rng.permutation(a))[1], 0.99)
+        self.assertLess(compare.time_change(timed(a), timed(a * 1.2))[1], 1e-6)
+        self.assertGreater(compare.time_change(timed(a), timed(rng.permutation(a)))[1], 0.99)
 
 
 if __name__ == "__main__":

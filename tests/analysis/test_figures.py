@@ -2,6 +2,7 @@
 labelled line per integrator of the scene on every axes."""
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -13,7 +14,7 @@ matplotlib.use("Agg")
 import matplotlib.image as mpimg  # noqa: E402
 import numpy as np  # noqa: E402
 
-from analysis import plot, style  # noqa: E402
+from analysis import figures, figures_ball, figures_overview, figures_precision, plot, style  # noqa: E402
 from analysis import report as rp  # noqa: E402
 from tests.analysis import synthetic as syn  # noqa: E402
 
@@ -26,9 +27,11 @@ def labelled_lines(ax):
 
 
 def expected_files(report, perf=True):
-    names = {"stability.png", "scenes.png", "summary.md"} | ({"ns-per-step.png"} if perf else set())
+    names = {"stability.png", "scenes.png", "ball-deforms.png", "summary.md", "index.html"}
+    names |= {"ns-per-step.png"} if perf else set()
     for scene in rp.scenes(report):
-        names |= {f"convergence-{scene}.png", f"work-precision-{scene}.png", f"drift-{scene}.png"}
+        names |= {f"convergence-{scene}.png", f"work-precision-{scene}.png", f"work-precision-best-{scene}.png",
+                  f"tolerance-{scene}.png", f"drift-{scene}.png"}
     return names
 
 
@@ -41,10 +44,14 @@ class FiguresOfSyntheticReport(unittest.TestCase):
         cls.trajectories = os.path.join(cls.tmp.name, "trajectories")
         os.makedirs(cls.trajectories)
         syn.trajectory_csv(os.path.join(cls.trajectories, "valley-sideways.csv"))
+        cls.ball = os.path.join(cls.tmp.name, "ball")
+        os.makedirs(cls.ball)
+        for name, growth in syn.BALL_GROWTH.items():
+            syn.ball_csv(os.path.join(cls.ball, f"{name}.csv"), growth)
         cls.out = os.path.join(cls.tmp.name, "out")
         cls.log, cls.figures = [], {}
-        cls.written = plot.write_all(cls.report, cls.out, cls.perf, cls.trajectories, SCENE_DIR, cls.log.append,
-                                     figures_out=cls.figures)
+        options = plot.Options(perf=cls.perf, trajectories=cls.trajectories, ball=cls.ball, scene_dir=SCENE_DIR)
+        cls.written = plot.write_all(cls.report, cls.out, options, cls.log.append, figures_out=cls.figures)
 
     @classmethod
     def tearDownClass(cls):
@@ -53,7 +60,7 @@ class FiguresOfSyntheticReport(unittest.TestCase):
     def test_every_figure_is_written_and_not_blank(self):
         self.assertEqual(set(os.listdir(self.out)), expected_files(self.report))
         # nothing skipped: the log holds only the files written
-        self.assertEqual([m for m in self.log if not m.startswith("wrote ")], [])
+        self.assertEqual([m for m in self.log if not m.startswith(("wrote ", "figures for "))], [])
         for name in sorted(os.listdir(self.out)):
             if not name.endswith(".png"):
                 continue
@@ -94,6 +101,57 @@ class FiguresOfSyntheticReport(unittest.TestCase):
                 self.assertEqual(len(lines), len(syn.FIXED) + len(syn.ADAPTIVE))
                 self.assertTrue(all(len(line.get_xdata()) > 0 for line in lines))
 
+    def test_work_precision_says_its_metric(self):
+        for name in ("work-precision-plane.png", "work-precision-best-plane.png"):
+            axes = [ax for ax in self.figures[name].axes if ax.get_lines()]
+            self.assertEqual(axes[0].get_ylabel(), rp.METRIC_LABELS["worst"])
+            self.assertTrue(all("worst error against" in ax.get_title() for ax in axes))
+        fig = figures_precision.work_precision(self.report, "plane", style.Palette(rp.families(self.report)),
+                                               "rotation")
+        self.assertEqual(fig.axes[0].get_ylabel(), "rotation error (rad)")
+        self.assertIn("rotation error against wall time", fig.axes[0].get_title())
+
+    def test_best_of_each_family_has_one_line_per_family(self):
+        families = {f for f, *_rest in list(syn.FIXED.values()) + list(syn.ADAPTIVE.values())}
+        for scene in syn.SCENES:
+            for ax in [ax for ax in self.figures[f"work-precision-best-{scene}.png"].axes if ax.get_lines()]:
+                labels = [line.get_label() for line in labelled_lines(ax)]
+                self.assertEqual(sorted(label.split(":")[0] for label in labels), sorted(families))
+
+    def test_pareto_choice(self):
+        # a beats b at every cost: a is the family's best; the front drops dominated points
+        self.assertEqual(figures_precision.pareto_front([(1, 1e-2), (2, 1e-3), (3, 1e-2), (4, 1e-5)]), [0, 1, 3])
+        runs = [{"integrator": n, "adaptive": False, "status": "ok", "rhs_evals": c, "error": {"worst": e}}
+                for n, c, e in (("a", 10, 1e-3), ("a", 100, 1e-7), ("b", 20, 1e-3), ("b", 200, 1e-6))]
+        pick = figures_precision.best_of_family(runs, ["b", "a"], lambda r: r["rhs_evals"], "worst", 0.0)
+        self.assertEqual(pick, "a")
+
+    def test_tolerance_figure_shows_the_fitted_slopes(self):
+        ax = self.figures["tolerance-plane.png"].axes[0]
+        labels = [line.get_label() for line in labelled_lines(ax)]
+        self.assertEqual(len(labels), len(syn.ADAPTIVE) + 1)
+        self.assertIn("gsl-rkf45-adaptive: fitted slope 0.80", labels)
+        self.assertIn("rkmk-f78-adaptive: fitted slope 1.00", labels)
+        self.assertIn("error = tolerance (slope 1)", labels)
+
+    def test_the_ball_deforms_as_the_trajectories_say(self):
+        fig = self.figures["ball-deforms.png"]
+        titles = [ax.get_title() for ax in fig.axes]
+        self.assertEqual(len(titles), len(syn.BALL_GROWTH) * figures_ball.TIMES)
+        for name, growth in syn.BALL_GROWTH.items():
+            last = [t for t in titles if t.startswith(f"{name}, t = {syn.T_END:g} s")]
+            self.assertEqual(len(last), 1, titles)
+            self.assertIn(f"axes ratio {1 + growth * syn.T_END:.3f}", last[0])
+
+    def test_index_html_links_every_figure(self):
+        with open(os.path.join(self.out, "index.html"), encoding="utf-8") as f:
+            page = f.read()
+        pngs = sorted(n for n in os.listdir(self.out) if n.endswith(".png"))
+        self.assertEqual(sorted(re.findall(r'<img src="([^"]+)"', page)), pngs)
+        # the summary's tables are rendered, the escaped '|' restored inside its cell
+        self.assertIn("<h2>Same tableau, flat vs Lie (worst error)</h2>", page)
+        self.assertIn("<td>gsl: step size underflow | h &lt; 1e-15</td>", page)
+
     def test_drift_draws_each_drift_run_and_each_integrator(self):
         fig = self.figures["drift-valley-sideways.png"]
         axes = [ax for ax in fig.axes if ax.get_lines()]
@@ -110,7 +168,7 @@ class FiguresOfSyntheticReport(unittest.TestCase):
     def test_an_integrator_looks_the_same_in_every_figure(self):
         colours = {}
         for name, fig in self.figures.items():
-            if not name.startswith(("convergence", "work-precision")):
+            if not name.startswith(("convergence", "work-precision-plane", "work-precision-valley")):
                 continue
             for ax in fig.axes:
                 for line in labelled_lines(ax):
@@ -125,13 +183,14 @@ class FiguresOfSyntheticReport(unittest.TestCase):
             log = []
             plot.write_all(syn.subset(syn.minimal_report(), "plane", ("rk4", "rkmk4", "gsl-rkf45-adaptive")), out,
                            log=log.append)
+            self.assertIn("tolerance-plane.png", os.listdir(out))
             self.assertIn("stability.png", os.listdir(out))
             self.assertIn("convergence-plane.png", os.listdir(out))
         with tempfile.TemporaryDirectory() as out:
             log = []
-            written = plot.write_all({"schema": rp.SCHEMA, "runs": []}, out, perf={"benchmarks": []},
+            written = plot.write_all({"schema": rp.SCHEMA, "runs": []}, out, plot.Options(perf={"benchmarks": []}),
                                      log=log.append)
-            self.assertEqual([os.path.basename(p) for p in written], ["summary.md"])
+            self.assertEqual([os.path.basename(p) for p in written], ["summary.md", "index.html"])
             self.assertTrue(any(m.startswith("skipped stability.png") for m in log))
             self.assertTrue(any(m.startswith("skipped ns-per-step.png") for m in log))
 
@@ -140,11 +199,11 @@ class FiguresOfSyntheticReport(unittest.TestCase):
         del report["stability"]  # it has another scene
         for run in report["runs"]:
             run["status"] = "diverged"
-            run["error"].update(contact=None, centre=None, omega=None, rotation=None)
+            run["error"].update(contact=None, centre=None, omega=None, rotation=None, worst=None)
         with tempfile.TemporaryDirectory() as out:
             log = []
             plot.write_all(report, out, log=log.append)
-            self.assertEqual([m for m in log if not m.startswith("wrote ")], [])
+            self.assertEqual([m for m in log if not m.startswith(("wrote ", "figures for "))], [])
             for name in ("convergence-plane.png", "work-precision-plane.png", "drift-plane.png", "stability.png"):
                 self.assertIn(name, os.listdir(out))
 
@@ -164,6 +223,32 @@ class FiguresOfSyntheticReport(unittest.TestCase):
                                   capture_output=True, text=True, cwd=tmp)
             self.assertEqual(done.returncode, 2)
             self.assertIn("runs[0] has no key 'integrator'", done.stderr)
+            with open(bad, "w", encoding="utf-8") as f:
+                json.dump({**syn.minimal_report(), "schema": "rollbench.report/1"}, f)
+            done = subprocess.run([sys.executable, os.path.join(ROOT, "analysis", "plot.py"), bad, "--out", tmp],
+                                  capture_output=True, text=True, cwd=tmp)
+            self.assertEqual(done.returncode, 2)
+            self.assertIn("schema version 'rollbench.report/1' found, this analysis reads only "
+                          "\"rollbench.report/2\"", done.stderr)
+            done = subprocess.run([sys.executable, os.path.join(ROOT, "analysis", "plot.py"), path, "--out", tmp,
+                                   "--metric", "energy"], capture_output=True, text=True, cwd=tmp)
+            self.assertEqual(done.returncode, 2)
+            self.assertIn("argument --metric: invalid choice: 'energy'", done.stderr)
+
+    def test_a_scene_rollbench_refuses_is_left_out_with_its_message(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            with open(os.path.join(SCENE_DIR, "saddle.json"), encoding="utf-8") as f:
+                scene = json.load(f)
+            scene["landscape"] = "a*(x^2 - y^2) +* 1"
+            with open(os.path.join(tmp, "plane.json"), "w", encoding="utf-8") as f:
+                json.dump(scene, f)
+            messages = []
+            report = syn.subset(syn.make_report(), "plane", ("rk4",))
+            del report["stability"]  # it names another scene
+            with self.assertRaises(figures.NothingToPlot):
+                figures_overview.scenes(report, tmp, None, messages)
+            self.assertEqual(len(messages), 1, messages)
+            self.assertRegex(messages[0], r"scenes.png: left out plane \(rollbench: 'landscape' column \d+: ")
 
 
 class Styles(unittest.TestCase):
@@ -188,8 +273,9 @@ class ReportValidation(unittest.TestCase):
     def test_missing_keys_are_named(self):
         with self.assertRaisesRegex(rp.ReportError, "missing key 'schema'"):
             rp.validate({"runs": []})
-        with self.assertRaisesRegex(rp.ReportError, "this analysis reads"):
-            rp.validate({"schema": "rollbench.report/2"})
+        with self.assertRaisesRegex(rp.ReportError, "schema version 'rollbench.report/1' found, this analysis "
+                                                    "reads only \"rollbench.report/2\""):
+            rp.validate({"schema": "rollbench.report/1"})
         report = syn.make_report()
         del report["runs"][5]["status"]
         with self.assertRaisesRegex(rp.ReportError, r"runs\[5\] has no key 'status'"):

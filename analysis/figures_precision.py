@@ -1,0 +1,147 @@
+"""Accuracy against cost and against tolerance, per scene: the full
+work–precision figure, the best method of each family (Pareto), and
+tolerance proportionality. Every figure names its accuracy metric."""
+import math
+
+import numpy as np
+
+from analysis import costs
+from analysis import report as rp
+from analysis.figures import NothingToPlot, empty_log_axes, legend_right, new_figure, positive, shade_floor
+
+
+def _cost_axes_label(kind):
+    return "wall time per run, median (s)" if kind == "time" else "right-hand-side evaluations"
+
+
+def _draw_method(ax, runs, name, cost_of, metric, floor, palette, label=None):
+    points = costs.curve(runs, cost_of, metric, floor)
+    style = palette.style(name)
+    adaptive = bool(runs[0]["adaptive"])
+    suffix = " (adaptive)" if adaptive and "adaptive" not in name else ""
+    ax.plot([c for c, _, _ in points], [e for _, e, _ in points], label=(label or name) + suffix,
+            markersize=4.5, linewidth=1.3, markerfacecolor="none" if adaptive else style["color"], **style)
+
+
+def _finish_axes(ax, scene, metric, kind, floor, title):
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(_cost_axes_label(kind))
+    ax.grid(True, which="major", alpha=0.3)
+    what = "wall time" if kind == "time" else "rhs evaluations"
+    ax.set_title(f"{scene}: {title}{metric} error against {what}", fontsize=10)
+    if not empty_log_axes(ax, "no successful run with a measured error"):
+        shade_floor(ax, floor, side="left")
+        # the accuracies summary.md reads the costs at
+        for target in costs.TARGETS:
+            ax.axhline(target, color="#999999", linewidth=0.7, linestyle=":", zorder=0.5)
+
+
+def _figure(names):
+    fig = new_figure(12, max(5.2, 1.2 + 0.16 * (len(names) if len(names) <= 16 else len(names) / 2)))
+    return fig, fig.subplots(1, 2, sharey=True)
+
+
+def work_precision(report, scene, palette, metric=rp.DEFAULT_METRIC):
+    """Error against wall time (left) and rhs evaluations (right), every method of the scene."""
+    runs = rp.runs(report, scene)
+    if not runs:
+        raise NothingToPlot(f"no runs for scene {scene}")
+    floor = rp.floor(report, scene)
+    names = rp.integrators(runs)
+    fig, axes = _figure(names)
+    for ax, (kind, _, cost_of) in zip(axes, costs.COSTS):
+        for name in names:
+            _draw_method(ax, [r for r in runs if r["integrator"] == name], name, cost_of, metric, floor, palette)
+        _finish_axes(ax, scene, metric, kind, floor, "")
+    axes[0].set_ylabel(rp.METRIC_LABELS[metric])
+    targets = ", ".join(f"{t:g}" for t in costs.TARGETS)
+    legend_right(axes[1], title=f"hollow markers: adaptive\ndotted: {targets} (summary.md)")
+    return fig
+
+
+def pareto_front(points):
+    """Indices of the points (cost, error, ...) that no other point beats in both cost and error."""
+    order = sorted(range(len(points)), key=lambda i: (points[i][0], points[i][1]))
+    front, best = [], math.inf
+    for i in order:
+        if points[i][1] < best:
+            front.append(i)
+            best = points[i][1]
+    return front
+
+
+def best_of_family(runs, names, cost_of, metric, floor):
+    """The member of a family with the most points on the family's Pareto front (ties: first name)."""
+    points = []
+    for name in names:
+        points += [(c, e, name) for c, e, _ in costs.curve([r for r in runs if r["integrator"] == name],
+                                                           cost_of, metric, floor)]
+    if not points:
+        return None
+    owners = [points[i][2] for i in pareto_front(points)]
+    return max(names, key=lambda n: (owners.count(n), -names.index(n)))
+
+
+def work_precision_best(report, scene, palette, metric=rp.DEFAULT_METRIC):
+    """Like work_precision, but one line per family: its best (Pareto) method, chosen per cost axis."""
+    runs = rp.runs(report, scene)
+    if not runs:
+        raise NothingToPlot(f"no runs for scene {scene}")
+    floor = rp.floor(report, scene)
+    families = rp.families(report)
+    members = {}
+    for name in rp.integrators(runs):
+        members.setdefault(families.get(name) or "?", []).append(name)
+    fig, axes = _figure(list(members))
+    for ax, (kind, _, cost_of) in zip(axes, costs.COSTS):
+        for family, names in members.items():
+            best = best_of_family(runs, names, cost_of, metric, floor)
+            if best is None:
+                ax.plot([], [], label=f"{family}: no successful run")
+                continue
+            _draw_method(ax, [r for r in runs if r["integrator"] == best], best, cost_of, metric, floor, palette,
+                         label=f"{family}: {best}")
+        _finish_axes(ax, scene, metric, kind, floor, "best of each family, ")
+    axes[0].set_ylabel(rp.METRIC_LABELS[metric])
+    legend_right(axes[1], title="family: its method with the most\npoints on the family's Pareto front")
+    return fig
+
+
+def tolerance(report, scene, palette, metric=rp.DEFAULT_METRIC):
+    """Worst error against tolerance per adaptive method, with the report's fit (slope in the legend)."""
+    runs = rp.runs(report, scene, adaptive=True)
+    if not runs:
+        raise NothingToPlot(f"no adaptive runs for scene {scene}")
+    fits = {f["integrator"]: f for f in rp.tolerance_fits(report, scene)}
+    fig = new_figure(9, 5.5)
+    ax = fig.subplots()
+    every_tol = []
+    for name in rp.integrators(runs):
+        mine = [r for r in runs if r["integrator"] == name and rp.ok(r)]
+        tol, err = positive([rp.tolerance(r) for r in mine], [rp.error(r, metric) for r in mine])
+        every_tol += list(tol)
+        fit = fits.get(name)
+        slope = rp.num((fit or {}).get("slope"))
+        # the report fits the worst error; its slope labels the method whatever is drawn
+        label = f"{name}: fitted slope {slope:.2f}" if math.isfinite(slope) else f"{name}: no fit"
+        style = palette.style(name)
+        ax.plot(tol, err, linestyle="none", marker=style["marker"], color=style["color"], markersize=5,
+                label=label)
+        intercept = rp.num((fit or {}).get("intercept"))
+        if tol.size and math.isfinite(slope) and math.isfinite(intercept) and metric == "worst":
+            xs = np.geomspace(tol.min(), tol.max(), 20)
+            ax.plot(xs, 10.0 ** (intercept + slope * np.log10(xs)), color=style["color"],
+                    linestyle=style["linestyle"], linewidth=1.1, label="_fit")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("tolerance (rtol = atol)")
+    ax.set_ylabel(rp.METRIC_LABELS[metric])
+    ax.grid(True, which="major", alpha=0.3)
+    ax.set_title(f"{scene}: tolerance proportionality, {metric} error against tolerance", fontsize=10)
+    if not empty_log_axes(ax, "no successful adaptive run"):
+        # error = tolerance: where a tolerance would mean exactly what it says
+        xs = np.array([min(every_tol), max(every_tol)])
+        ax.plot(xs, xs, color="#555555", linewidth=0.9, linestyle=(0, (4, 3)), label="error = tolerance (slope 1)")
+    legend_right(ax, title="lines: the report's least-squares fit\n(log10 worst error on log10 tol)")
+    return fig
