@@ -27,35 +27,53 @@ def stretch(r):
     return s[0] / s[-1] if s[-1] > 0 else np.inf
 
 
-def _draw(ax, r, colour):
+def _draw(ax, r, colour, lim):
     u, v = np.meshgrid(*SPHERE)
     points = np.stack([np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v)])
     x, y, z = np.einsum("ij,jab->iab", r, points)
     ax.plot_wireframe(x, y, z, color=colour, linewidth=0.5)
-    # the unit sphere's outline (from a far viewer), for scale
-    lim = max(1.0, float(np.abs([x, y, z]).max()))
     for a in (ax.set_xlim, ax.set_ylim, ax.set_zlim):
         a(-lim, lim)
     ax.set_box_aspect((1, 1, 1))
     ax.set_axis_off()
 
 
+def trajectory_files(trajectory_dir, methods):
+    """[(method, label, path)]: <method>.csv, or <method>-h<step>.csv labelled with its step."""
+    found = []
+    names = sorted(os.listdir(trajectory_dir)) if os.path.isdir(trajectory_dir) else []
+    for method in methods:
+        for name in names:
+            stem = name[:-4]
+            if name.endswith(".csv") and (stem == method or stem.startswith(method + "-h")):
+                label = method if stem == method else f"{method}, h = {stem[len(method) + 2:]} s"
+                found.append((method, label, os.path.join(trajectory_dir, name)))
+                break
+    return found
+
+
 def ball_deforms(trajectory_dir, methods=("euler", "rk4", "rkmk4")):
-    """A row per method with <method>.csv in trajectory_dir, a column per time."""
-    found = [m for m in methods if os.path.exists(os.path.join(trajectory_dir, f"{m}.csv"))]
+    """A row per method with a trajectory in trajectory_dir (see trajectory_files), a column per time."""
+    found = trajectory_files(trajectory_dir, methods)
     if not found:
         raise NothingToPlot(f"no trajectory CSV of {', '.join(methods)} in {trajectory_dir}")
     colours = {"euler": "#1f77b4", "rk4": "#17becf", "rkmk4": "#d62728"}
-    fig = new_figure(3.0 * TIMES, 3.1 * len(found))
-    for row, method in enumerate(found):
-        t, r = rotations(os.path.join(trajectory_dir, f"{method}.csv"))
+    rows = []
+    for method, label, path in found:
+        t, r = rotations(path)
         picks = np.unique(np.linspace(0, t.size - 1, TIMES).round().astype(int))
+        rows.append((method, label, t, r, picks))
+    # one scale for every panel, so that a ball that grows or shrinks is seen to
+    lim = max([1.0] + [float(np.linalg.norm(r[k], 2)) for _, _, _, r, picks in rows for k in picks])
+    fig = new_figure(3.0 * TIMES, 3.1 * len(found))
+    for row, (method, label, t, r, picks) in enumerate(rows):
         for col, k in enumerate(picks):
             ax = fig.add_subplot(len(found), TIMES, row * TIMES + col + 1, projection="3d")
-            _draw(ax, r[k], colours.get(method, "#555555"))
+            _draw(ax, r[k], colours.get(method, "#555555"), lim)
             defect = np.linalg.norm(r[k].T @ r[k] - np.eye(3))
-            ax.set_title(f"{method}, t = {t[k]:.4g} s\naxes ratio {stretch(r[k]):.3f}, "
+            ax.set_title(f"{label}, t = {t[k]:.4g} s\naxes ratio {stretch(r[k]):.3f}, "
                          f"‖RᵀR − I‖ = {defect:.2g}", fontsize=8)
-    fig.suptitle("the ball as R maps the unit sphere: R off SO(3) makes it an ellipsoid", fontsize=11)
+    fig.suptitle("the ball as R maps the unit sphere: R off SO(3) makes it an ellipsoid\n"
+                 f"(trajectories in {os.path.basename(os.path.normpath(trajectory_dir))}/)", fontsize=11)
     fig.subplots_adjust(wspace=0.0, hspace=0.25)
     return fig

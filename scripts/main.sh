@@ -22,8 +22,16 @@ for scene_file in problems/scenes/*.json; do
     --out "$out/trajectories/$scene.csv" > /dev/null
 done
 
+# "the ball deforms": 20 s on gaussian-hills, each method at a step where a
+# flat method's R visibly leaves SO(3) (axes ratio about 1.5 at the end)
+mkdir -p "$out/ball-gaussian-hills"
+for run in euler:0.001 rk4:0.08 rkmk4:0.08; do
+  "$bin/rollbench" trajectory gaussian-hills --integrator "${run%%:*}" --h "${run#*:}" --dt-out 0.4 --t-end 20 \
+    --out "$out/ball-gaussian-hills/${run%%:*}-h${run#*:}.csv" > /dev/null
+done
+
 /usr/bin/python3 analysis/plot.py "$out/report.json" --perf "$out/perf.json" \
-  --trajectories "$out/trajectories" --out "$out/plots"
+  --trajectories "$out/trajectories" --ball "$out/ball-gaussian-hills" --out "$out/plots"
 
 echo
 echo "report:     $(pwd)/$out/report.json"

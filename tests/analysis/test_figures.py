@@ -143,6 +143,14 @@ class FiguresOfSyntheticReport(unittest.TestCase):
             self.assertEqual(len(last), 1, titles)
             self.assertIn(f"axes ratio {1 + growth * syn.T_END:.3f}", last[0])
 
+    def test_ball_trajectories_are_found_by_method_and_step(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            for name in ("rk4-h0.08.csv", "rkmk4.csv", "rk45.csv", "notes.txt"):
+                open(os.path.join(tmp, name), "w").close()
+            found = figures_ball.trajectory_files(tmp, ("euler", "rk4", "rkmk4"))
+        self.assertEqual([(m, label, os.path.basename(p)) for m, label, p in found],
+                         [("rk4", "rk4, h = 0.08 s", "rk4-h0.08.csv"), ("rkmk4", "rkmk4", "rkmk4.csv")])
+
     def test_index_html_links_every_figure(self):
         with open(os.path.join(self.out, "index.html"), encoding="utf-8") as f:
             page = f.read()
