@@ -8,7 +8,8 @@ import subprocess
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-DEFAULT_ROLLBENCH = os.path.join(ROOT, "build", "release", "rollbench")
+# RB_ROLLBENCH: another build's binary (CTest sets it to the one it built)
+DEFAULT_ROLLBENCH = os.environ.get("RB_ROLLBENCH") or os.path.join(ROOT, "build", "release", "rollbench")
 TIMEOUT_S = 60
 
 

@@ -12,7 +12,7 @@ import numpy as np
 
 from analysis import landscape
 
-ROLLBENCH = os.environ.get("RB_ROLLBENCH", landscape.DEFAULT_ROLLBENCH)
+ROLLBENCH = landscape.DEFAULT_ROLLBENCH
 
 
 def rollbench(*args):
