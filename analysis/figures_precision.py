@@ -42,12 +42,17 @@ def _figure(names):
     return fig, fig.subplots(1, 2, sharey=True)
 
 
-def work_precision(report, scene, palette, metric=rp.DEFAULT_METRIC):
-    """Error against wall time (left) and rhs evaluations (right), every method of the scene."""
+def _scene_runs(report, scene):
+    """(runs, reference floor) of a scene; NothingToPlot without runs."""
     runs = rp.runs(report, scene)
     if not runs:
         raise NothingToPlot(f"no runs for scene {scene}")
-    floor = rp.floor(report, scene)
+    return runs, rp.floor(report, scene)
+
+
+def work_precision(report, scene, palette, metric=rp.DEFAULT_METRIC):
+    """Error against wall time (left) and rhs evaluations (right), every method of the scene."""
+    runs, floor = _scene_runs(report, scene)
     names = rp.integrators(runs)
     fig, axes = _figure(names)
     for ax, (kind, _, cost_of) in zip(axes, costs.COSTS):
@@ -85,10 +90,7 @@ def best_of_family(runs, names, cost_of, metric, floor):
 
 def work_precision_best(report, scene, palette, metric=rp.DEFAULT_METRIC):
     """Like work_precision, but one line per family: its best (Pareto) method, chosen per cost axis."""
-    runs = rp.runs(report, scene)
-    if not runs:
-        raise NothingToPlot(f"no runs for scene {scene}")
-    floor = rp.floor(report, scene)
+    runs, floor = _scene_runs(report, scene)
     families = rp.families(report)
     members = {}
     for name in rp.integrators(runs):

@@ -14,8 +14,15 @@ def _order_cell(order, component):
     value = rp.observed(order, component)
     if not math.isfinite(value):
         return "—"
-    ci = rp.num((order.get("ci95") or {}).get(component))
-    text = f"{value:.2f} ± {ci:.2f}" if math.isfinite(ci) else f"{value:.2f}"
+    ci = (order.get("ci95") or {}).get(component)
+    if isinstance(ci, list) and len(ci) == 2:
+        # the interval itself, [low, high]
+        low, high = rp.num(ci[0]), rp.num(ci[1])
+        text = f"{value:.2f} [{low:.2f}, {high:.2f}]" if math.isfinite(low) and math.isfinite(high) else f"{value:.2f}"
+    else:
+        # the half-width
+        ci = rp.num(ci)
+        text = f"{value:.2f} ± {ci:.2f}" if math.isfinite(ci) else f"{value:.2f}"
     return f"{text} ({rp.verdict(order, component)})"
 
 
@@ -36,7 +43,8 @@ def orders_section(report):
     lines = ["## Observed order", ""]
     if not entries:
         return lines + ["The report has no `orders` section (no fixed-step runs, or a quick preset).", ""]
-    lines += ["Slope of log error against log h as the runner fitted it, ± its 95 % interval, and the runner's "
+    lines += ["Slope of log error against log h as the runner fitted it, its 95 % interval (± half-width, or "
+              "[low, high]), and the runner's "
               "verdict per component: \"as declared\" when the interval lies within 0.2 of the declared order "
               "or above it, \"lower\" when below, \"inconclusive\" when it is wider than ±0.3 or rests on fewer "
               "than 4 points (an inconclusive fit is no pass). Overall: lower if any component is lower, as "

@@ -84,6 +84,12 @@ class SummaryOfSyntheticReport(unittest.TestCase):
         self.assertEqual(rows[("valley-sideways", "gsl-rk4")][-1], "**lower**")
         self.assertEqual(rows[("plane", "rk4")][-1], "as declared")
 
+    def test_an_interval_given_as_low_high(self):
+        report = syn.subset(self.report, "plane", ["rk4"])
+        order = dict(report["orders"][0], ci95={"contact": [3.9, 4.1]}, verdict={"contact": "as declared"})
+        self.assertEqual(summary._order_cell(order, "contact"),
+                         f"{order['observed']['contact']:.2f} [3.90, 4.10] (as declared)")
+
     def test_without_orders_nothing_is_fitted_here(self):
         markdown = summary.summary_markdown(syn.minimal_report())
         self.assertIn("The report has no `orders` section", markdown)
