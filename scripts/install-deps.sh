@@ -1,15 +1,26 @@
 #!/usr/bin/env bash
-# Installs everything rollbench needs from Debian's packages (run as root, or
-# with sudo available). Safe to run again: apt skips what is installed.
+# Installs what rollbench needs from Debian's packages (run as root, or with
+# sudo available). Checks with dpkg-query first and runs apt only for what is
+# missing, so it is quick when everything is there.
+#   scripts/install-deps.sh           what the build and the main job need
+#   scripts/install-deps.sh --tests   that and what only the tests need
 set -euo pipefail
 packages=(
   g++ cmake ninja-build make
   libeigen3-dev nlohmann-json3-dev libboost-dev libgsl-dev libcli11-dev
   libgtest-dev libbenchmark-dev
-  python3 python3-matplotlib python3-numpy python3-scipy chromium libbenchmark-tools
+  python3 python3-matplotlib python3-numpy python3-scipy libbenchmark-tools
   # scripts/robustness.sh: libFuzzer and the sanitizer runtimes, llvm-symbolizer for stacks
   clang-14 libclang-rt-14-dev llvm-14
 )
+# only scripts/test.sh needs these: the SLURM test's single-node cluster and
+# (tests/slurm/test_slurm.sh), chromium for the index.html test; the main job stays lean without them
+test_packages=(slurm-wlm munge chromium)
+case "${1:-}" in
+  "") ;;
+  --tests) packages+=("${test_packages[@]}") ;;
+  *) echo "usage: $0 [--tests]" >&2; exit 2 ;;
+esac
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -21,5 +32,7 @@ fi
 sudo=""
 [ "$(id -u)" -eq 0 ] || sudo="sudo"
 echo "install-deps: installing ${missing[*]}"
-$sudo apt-get update -qq
-DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
+# wait for another apt on the same machine rather than fail
+apt=(apt-get -o DPkg::Lock::Timeout=600)
+$sudo "${apt[@]}" update -qq
+DEBIAN_FRONTEND=noninteractive $sudo "${apt[@]}" install -y -qq "${missing[@]}"

@@ -2,10 +2,12 @@
 # The main job: build, run the default benchmark preset (every registered
 # integrator on every shipped scene, plus the stability study), time the
 # fixed-step methods per step with Google Benchmark, and make the plots.
-# Everything lands in out/ (override with OUT=dir).
+# Everything lands in out/ (override with OUT=dir). Installs what it needs
+# first (apt, only when something is missing).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${OUT:-out}"
+./scripts/install-deps.sh
 ./scripts/build.sh
 mkdir -p "$out/trajectories"
 bin=./build/release

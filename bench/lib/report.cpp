@@ -239,8 +239,43 @@ json read_report(const std::string& path) {
   return j;
 }
 
+namespace {
+
+std::string joined(const std::vector<long>& numbers) {
+  std::string text;
+  for (const long n : numbers) text += (text.empty() ? "" : ", ") + std::to_string(n);
+  return text;
+}
+
+// A merge needs every shard of the sweep once: a shard whose job failed is
+// named, so that only it has to run again.
+void check_every_shard_once(const std::vector<json>& shards) {
+  const long count = shards.front().at("options").at("shard").at(1).get<long>();
+  std::vector<long> have, missing;
+  for (const json& s : shards) {
+    const long index = s.at("options").at("shard").at(0).get<long>();
+    const long of = s.at("options").at("shard").at(1).get<long>();
+    if (of != count)
+      throw InputError("the reports come from sweeps cut into " + std::to_string(count) + " and " +
+                           std::to_string(of) + " shards", "reports");
+    if (std::find(have.begin(), have.end(), index) != have.end())
+      throw InputError("shard " + std::to_string(index) + " of " + std::to_string(count) + " is given twice", "reports");
+    have.push_back(index);
+  }
+  for (long i = 0; i < count; ++i)
+    if (std::find(have.begin(), have.end(), i) == have.end()) missing.push_back(i);
+  if (missing.empty()) return;
+  std::sort(have.begin(), have.end());
+  throw InputError(std::string(missing.size() == 1 ? "shard " : "shards ") + joined(missing) + " of " +
+                       std::to_string(count) + (missing.size() == 1 ? " is" : " are") + " missing (given: " +
+                       joined(have) + ")", "reports");
+}
+
+}  // namespace
+
 json merge_reports(const std::vector<json>& shards) {
   if (shards.empty()) throw InputError("nothing to merge", "reports");
+  check_every_shard_once(shards);
   json merged = shards.front();
   json base_options = merged.at("options");
   base_options.erase("shard");

@@ -25,7 +25,8 @@ nlohmann::json fit_orders(const nlohmann::json& runs, const nlohmann::json& refe
 
 // Joins shard reports: runs, references and stability records in sweep
 // order, orders refitted. Throws InputError for reports of another schema or
-// of different sweeps.
+// of different sweeps, and unless every shard 0..n-1 is there once (the
+// message names the missing ones).
 nlohmann::json merge_reports(const std::vector<nlohmann::json>& shards);
 
 // Reads a report and checks its schema string; throws InputError naming the

@@ -1,0 +1,17 @@
+# Checks of the project's scripts and docs, registered with CTest (included
+# from CMakeLists.txt with the other tests; RB_PYTHON3 is Debian's python3).
+
+# every relative link in README.md and docs/*.md resolves inside the repository
+add_test(NAME docs.links
+         COMMAND ${RB_PYTHON3} -m unittest discover -s tests/docs -t .
+         WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
+
+# scripts/slurm/ on a real single-node cluster on localhost; skipped (77)
+# without root or without slurm-wlm and munge. Its own waits give up well
+# before this timeout, so that it always stops what it started. Once, in the
+# release build: the sanitizer build (scripts/robustness.sh) is about the C++.
+if(NOT RB_SANITIZE)
+  add_test(NAME slurm.cluster
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/tests/slurm/test_slurm.sh $<TARGET_FILE:rollbench>)
+  set_tests_properties(slurm.cluster PROPERTIES TIMEOUT 600 SKIP_RETURN_CODE 77)
+endif()
