@@ -3,6 +3,13 @@
 // an accepted formula is evaluated (value, gradient and Hessian, in doubles
 // and on the integrators' AD type) at a few points derived from the input,
 // which must never crash, and must agree where the header promises it.
+//
+// Native code (formula_native.hpp) costs a compiler run, far too slow for
+// every input: each input's C source is generated in-process (so the code
+// generator sees every tape), and the first kNativeCap formulas of a run
+// whose source is new are compiled and must give the tape's bits at the
+// same points. The corpus itself is compiled in full by
+// tests/problems/test_formula_native.cpp.
 #include <Eigen/Core>
 #include <unsupported/Eigen/AutoDiff>
 
@@ -10,10 +17,16 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <limits>
+#include <set>
 #include <string>
 
+#include <unistd.h>
+
 #include "problems/formula.hpp"
+#include "problems/formula_codegen.hpp"
 
 namespace rb {
 namespace {
@@ -60,6 +73,26 @@ void check_point(const Formula& f, double x, double y, const std::string& text) 
     fail("eval on AD numbers differs from eval on doubles", text);
 }
 
+constexpr std::size_t kNativeCap = 8;
+
+// the tape's jets against native code's, bit for bit (NaN as NaN)
+void check_native(const Formula& tape, const Formula& native, double x, double y, const std::string& text) {
+  const Jet2<double> a = tape.eval(x, y), b = native.eval(x, y);
+  const Jet2<double> sa = tape.slopes(x, y), sb = native.slopes(x, y);
+  const double pa[12] = {a.f, a.fx, a.fy, a.fxx, a.fxy, a.fyy, sa.f, sa.fx, sa.fy, sa.fxx, sa.fxy, sa.fyy};
+  const double pb[12] = {b.f, b.fx, b.fy, b.fxx, b.fxy, b.fyy, sb.f, sb.fx, sb.fy, sb.fxx, sb.fxy, sb.fyy};
+  for (int i = 0; i < 12; ++i)
+    if (!(std::isnan(pa[i]) && std::isnan(pb[i])) && std::memcmp(&pa[i], &pb[i], sizeof(double)) != 0)
+      fail("native code differs from the tape", text);
+}
+
+// a fresh cache folder per fuzzer process, so each compiled input is built
+NativeSettings fuzz_native_settings() {
+  NativeSettings s;
+  s.cache_dir = (std::filesystem::temp_directory_path() / ("rb_fuzz_native_" + std::to_string(getpid()))).string();
+  return s;
+}
+
 }  // namespace
 }  // namespace rb
 
@@ -87,5 +120,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       {inf, std::numeric_limits<double>::quiet_NaN()},
   };
   for (const auto& p : points) check_point(f, p[0], p[1], text);
+
+  if (!f.tape().usable()) return 0;
+  static std::set<std::string> seen;
+  const std::string source = formula_c_source(f.tape());
+  if (seen.size() >= kNativeCap || !seen.insert(source).second) return 0;
+  static const NativeSettings settings = fuzz_native_settings();
+  Formula native = f;
+  if (native.compile_native(settings) != NativeOutcome::built) fail("native code could not be built", text);
+  for (const auto& p : points) check_native(f, native, p[0], p[1], text);
   return 0;
 }

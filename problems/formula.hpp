@@ -21,6 +21,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "problems/formula_native.hpp"
 #include "problems/formula_tape.hpp"
 #include "problems/input_error.hpp"
 #include "problems/jet.hpp"
@@ -123,6 +124,7 @@ class Formula {
   template <class T>
   [[gnu::always_inline]] Jet2<T> eval(const T& x, const T& y) const {
     if constexpr (std::is_same_v<T, double>) {
+      if (native_) return run_native(native_.full, x, y);
       if (tape_.usable()) return tape_.full.run(x, y);
     }
     if (max_stack_ <= kSmallStack) return run<T, kSmallStack>(x, y);
@@ -134,6 +136,7 @@ class Formula {
   template <class T>
   [[gnu::always_inline]] Jet2<T> slopes(const T& x, const T& y) const {
     if constexpr (std::is_same_v<T, double>) {
+      if (native_) return run_native(native_.slopes, x, y);
       if (tape_.usable()) return tape_.slopes.run(x, y);
     }
     Jet2<T> j = eval(x, y);
@@ -157,6 +160,17 @@ class Formula {
   // The lowered program eval and slopes run for double (formula_tape.hpp).
   const FormulaTape& tape() const { return tape_; }
 
+  // Switches eval and slopes on doubles from the tape to native code built
+  // from it (formula_native.hpp), with the settings from the environment;
+  // where that cannot be had, keeps the tape and says why on stderr, once
+  // per process. Returns whether native code runs now. Never throws.
+  bool compile_native();
+  // The same with explicit settings, silent: how it went.
+  NativeOutcome compile_native(const NativeSettings& settings);
+  bool is_native() const { return static_cast<bool>(native_); }
+  // Back to the tape (tests compare the two).
+  void drop_native() { native_ = {}; }
+
  private:
   // Stack for ordinary formulas; a Jet2 of a 14-direction AD number is 720
   // bytes, so the full-size stack is used only when needed.
@@ -166,6 +180,11 @@ class Formula {
   Jet2<T> run(const T& x, const T& y) const;
   template <std::size_t N>
   double run_value(double x, double y) const;
+  [[gnu::always_inline]] static Jet2<double> run_native(NativeFormula::Function fn, double x, double y) {
+    double out[6];
+    fn(x, y, out);
+    return {out[0], out[1], out[2], out[3], out[4], out[5]};
+  }
   // Lowers program_ to tape_ where it fits (formula.cpp).
   void lower_to_tape();
 
@@ -173,7 +192,17 @@ class Formula {
   std::vector<Op> program_;
   std::size_t max_stack_ = 0;
   FormulaTape tape_;
+  NativeFormula native_;
 };
+
+// The formula language's own names: variables, constants, functions and the
+// rejected non-smooth functions, from the parser's tables (the one list).
+std::vector<std::string_view> formula_reserved_names();
+
+// The one check of a param's name, for Formula::parse and for scenes: throws
+// InputError (no key; a scene places it under params.<name>) when name is
+// not a name or shadows any reserved name, with one sentence for all of them.
+void check_formula_param_name(std::string_view name);
 
 template <class T, std::size_t N>
 Jet2<T> Formula::run(const T& x, const T& y) const {

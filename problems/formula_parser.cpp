@@ -57,6 +57,25 @@ const typename Table::value_type* find_in(const Table& table, std::string_view n
 const FunctionInfo* find_function(std::string_view name) { return find_in(kFunctions, name); }
 const NonSmoothInfo* find_non_smooth(std::string_view name) { return find_in(kNonSmooth, name); }
 
+// The variables and constants a formula knows without params.
+struct NamedValue {
+  std::string_view name;
+  OpCode variable;  // push_x or push_y; push_const for a constant
+  double value = 0.0;
+};
+constexpr std::array<NamedValue, 4> kNamedValues = {{
+    {"x", OpCode::push_x}, {"y", OpCode::push_y},
+    {"pi", OpCode::push_const, std::numbers::pi}, {"e", OpCode::push_const, std::numbers::e},
+}};
+const NamedValue* find_named_value(std::string_view name) { return find_in(kNamedValues, name); }
+
+template <class Table>
+std::string names_of(const Table& table, std::string_view separator) {
+  std::string out;
+  for (const auto& entry : table) out.append(out.empty() ? "" : separator).append(entry.name);
+  return out;
+}
+
 std::string lowercase(std::string_view s) {
   std::string out(s);
   std::transform(out.begin(), out.end(), out.begin(), [](char c) { return c >= 'A' && c <= 'Z' ? char(c + 32) : c; });
@@ -200,22 +219,21 @@ class Compiler {
       return parse_call(*fn, name_tok);
     }
     const auto param = params_.find(std::string(name));
-    const bool known = name == "x" || name == "y" || name == "pi" || name == "e" || param != params_.end();
+    const NamedValue* named = find_named_value(name);
+    const bool known = named || param != params_.end();
     if (call && known)
       fail(quoted(name) + " is not a function; write " + std::string(name) + "*(...) for a product", name_tok);
-    if (name == "x") return emit_variable(OpCode::push_x);
-    if (name == "y") return emit_variable(OpCode::push_y);
-    if (name == "pi") return {true, std::numbers::pi, 0};
-    if (name == "e") return {true, std::numbers::e, 0};
+    if (named && named->variable != OpCode::push_const) return emit_variable(named->variable);
+    if (named) return {true, named->value, 0};
     if (param != params_.end()) return {true, param->second, 0};
     std::string message = (call ? "unknown function " : "unknown name ") + quoted(name);
     const std::string lower = lowercase(name);
-    if (lower != name && (find_function(lower) || lower == "x" || lower == "y" || lower == "pi" || lower == "e"))
+    if (lower != name && (find_function(lower) || find_named_value(lower)))
       message += "; names are case-sensitive: did you mean '" + lower + "'?";
     else if (call)
-      message += "; the functions are sin cos tan asin acos atan sinh cosh tanh exp log sqrt atan2 hypot";
+      message += "; the functions are " + names_of(kFunctions, " ");
     else
-      message += "; a formula knows x, y, pi, e" + known_params();
+      message += "; a formula knows " + names_of(kNamedValues, ", ") + known_params();
     fail(message, name_tok);
   }
 
@@ -322,20 +340,30 @@ class Compiler {
 
 void check_params(const std::map<std::string, double>& params) {
   for (const auto& [name, value] : params) {
-    if (!formula_detail::is_name(name))
-      throw InputError("param name " + quoted(name) +
-                       " is not a name: use letters, digits and '_', starting with a letter or '_'");
-    std::string shadowed;
-    if (name == "x" || name == "y") shadowed = "the variable " + name;
-    if (name == "pi" || name == "e") shadowed = "the constant " + name;
-    if (find_function(name)) shadowed = "the function " + name;
-    if (find_non_smooth(name)) shadowed = "the reserved name " + name;
-    if (!shadowed.empty()) throw InputError("param " + quoted(name) + " shadows " + shadowed + "; rename it");
+    check_formula_param_name(name);
     if (!std::isfinite(value)) throw InputError("param " + quoted(name) + " is not finite");
   }
 }
 
 }  // namespace
+
+std::vector<std::string_view> formula_reserved_names() {
+  std::vector<std::string_view> names;
+  for (const auto& v : kNamedValues) names.push_back(v.name);
+  for (const auto& f : kFunctions) names.push_back(f.name);
+  for (const auto& n : kNonSmooth) names.push_back(n.name);
+  return names;
+}
+
+void check_formula_param_name(std::string_view name) {
+  if (!formula_detail::is_name(name))
+    throw InputError("param name " + quoted(name) +
+                     " is not a name: use letters, digits and '_', starting with a letter or '_'");
+  if (find_named_value(name) || find_function(name) || find_non_smooth(name))
+    throw InputError("param " + quoted(name) + " shadows a name of the formula language (" +
+                     names_of(kNamedValues, " ") + " " + names_of(kFunctions, " ") + " " +
+                     names_of(kNonSmooth, " ") + "); rename it");
+}
 
 Formula::Formula() : text_("0"), program_{Op{OpCode::push_const, 0, 0.0}}, max_stack_(1) { lower_to_tape(); }
 

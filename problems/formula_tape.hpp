@@ -53,6 +53,14 @@ class TapeProgram {
 
   std::size_t size() const { return ops_.size(); }
 
+  // What run() executes, for the native code generator (formula_codegen.cpp).
+  static constexpr int kConstant = -1;  // output(): the part is constant_parts()'s
+  static constexpr int kLast = -2;      // output(): the part is the last op's result
+  const std::vector<TapeOp>& ops() const { return ops_; }
+  int output(std::size_t part) const { return out_[part]; }
+  const Jet2<double>& constant_parts() const { return constant_parts_; }
+  int first_input() const { return first_input_; }
+
   // Inlined into the right-hand side, so the jet is not returned in memory.
   [[gnu::always_inline]] Jet2<double> run(double x, double y) const {
     std::array<double, kMaxRegisters> r;
@@ -127,8 +135,6 @@ class TapeProgram {
  private:
   friend std::optional<TapeProgram> build_tape(const std::vector<TapeNode>& nodes,
                                                const std::array<int, 6>& outputs, const Jet2<double>& constants);
-  static constexpr int kConstant = -1;  // out_: the part is constant_parts_'s
-  static constexpr int kLast = -2;      // out_: the part is the last op's result
   std::vector<TapeOp> ops_;
   std::array<int, 6> out_{};  // where f, fx, fy, fxx, fxy, fyy are: a register, kConstant or kLast
   std::uint8_t first_input_ = 0;  // the input (0: x, 1: y) the first op reads

@@ -16,10 +16,13 @@ class Landscape {
   Landscape() = default;
   explicit Landscape(Formula formula) : formula_(std::move(formula)) {}
 
-  // Compiles the formula; throws InputError with the column of the problem
-  // (place it under the scene key with InputError::under("landscape")).
+  // Compiles the formula, to native code where it can (formula_native.hpp,
+  // else the tape); throws InputError with the column of the problem (place
+  // it under the scene key with InputError::under("landscape")).
   static Landscape parse(std::string_view text, const std::map<std::string, double>& params = {}) {
-    return Landscape(Formula::parse(text, params));
+    Formula formula = Formula::parse(text, params);
+    formula.compile_native();
+    return Landscape(std::move(formula));
   }
 
   // f, (fx, fy) and (fxx, fxy, fyy) at (x, y); T is double or an AD number.

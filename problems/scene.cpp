@@ -175,19 +175,13 @@ Eigen::Matrix<double, n, 1> vector_at(const json& v, const std::string& key) {
   return out;
 }
 
-// param names must not shadow the formula's own names
+// param names: the formula module's one check, placed under params.<name>
 void check_param_name(const std::string& name) {
-  static const std::set<std::string> reserved = {"x",    "y",    "pi",   "e",    "sin",  "cos",  "tan",
-                                                 "asin", "acos", "atan", "sinh", "cosh", "tanh", "exp",
-                                                 "log",  "sqrt", "atan2", "hypot", "abs", "min", "max",
-                                                 "floor"};
-  const std::string key = join_key("params", name);
-  const bool identifier = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
-                          std::all_of(name.begin(), name.end(), [](char c) {
-                            return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-                          });
-  if (!identifier) throw InputError("a param name must be an identifier (letters, digits, '_')", key);
-  if (reserved.count(name)) throw InputError("a param may not be named like a variable, constant or function", key);
+  try {
+    check_formula_param_name(name);
+  } catch (const InputError& e) {
+    throw e.under(join_key("params", name));
+  }
 }
 
 SceneStart read_start(const json& v) {

@@ -63,6 +63,7 @@ json build() {
   return {{"compiler", std::string("g++ ") + __VERSION__},
           {"flags", RB_BUILD_FLAGS},
           {"type", RB_BUILD_TYPE},
+          {"preset", RB_BUILD_PRESET},
           {"libraries",
            {{"boost", BOOST_LIB_VERSION},
             {"gsl", GSL_VERSION},

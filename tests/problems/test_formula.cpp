@@ -207,6 +207,10 @@ struct ErrorCase {
 
 TEST(Formula, ErrorsSayWhatAndWhere) {
   const std::string smooth = " is not smooth: the landscape needs continuous second derivatives (MODEL.md); ";
+  // every reserved name has this sentence (test_formula_vocabulary.cpp has them all)
+  const std::string shadows =
+      " shadows a name of the formula language (x y pi e sin cos tan asin acos atan sinh cosh tanh exp log sqrt "
+      "atan2 hypot abs min max sign floor ceil round); rename it";
   const std::vector<ErrorCase> cases = {
       {"", "empty formula", 1},
       {"  \t ", "empty formula", 1},
@@ -244,10 +248,8 @@ TEST(Formula, ErrorsSayWhatAndWhere) {
       {"(x, y)", "',' outside a function's argument list", 3},
       {"sin(x y)", "expected an operator, ',' or ')' before 'y'", 7},
       {"(x y)", "expected an operator or ')' before 'y'", 4},
-      {"x", "param 'x' shadows the variable x; rename it", 0, {{"x", 1}}},
-      {"x", "param 'e' shadows the constant e; rename it", 0, {{"e", 1}}},
-      {"x", "param 'sqrt' shadows the function sqrt; rename it", 0, {{"sqrt", 1}}},
-      {"x", "param 'abs' shadows the reserved name abs; rename it", 0, {{"abs", 1}}},
+      {"x", "param 'x'" + shadows, 0, {{"x", 1}}},
+      {"x", "param 'sqrt'" + shadows, 0, {{"sqrt", 1}}},
       {"x", "param name 'a b' is not a name: use letters, digits and '_', starting with a letter or '_'", 0,
        {{"a b", 1}}},
       {"x", "param 'a' is not finite", 0, {{"a", std::numeric_limits<double>::quiet_NaN()}}},

@@ -1,10 +1,13 @@
 #pragma once
-// A hand-coded peer for bench/perf_speed.cpp: the rolling ball of MODEL.md on
-// the valley landscape f = cos(x*pi + pi)/10 - y/10 with its derivatives
-// written out and compiled, and RK4 and RKMK4 written as plain step loops.
-// It is what someone would write for this one scene, so it tells how much the
-// suite's formula, its Problem interface and its generic tableau loops cost.
-// For the benchmark only: the suite's physics lives in problems/.
+// Hand-coded peers for bench/perf_speed.cpp: the rolling ball of MODEL.md on
+// one landscape with its derivatives written out and compiled, and RK4 and
+// RKMK4 written as plain step loops, as lean as a careful engineer writes
+// them for one scene: closed-form T^-1 (omega from v and N in a few
+// products), the geometry (N, N', C', E) fused into one pass of scalars, no
+// matrices and no temporaries in the right-hand side, built with the
+// suite's own flags. They tell how much the suite's formula, its Problem
+// interface and its generic tableau loops cost. For the benchmark only: the
+// suite's physics lives in problems/.
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -14,26 +17,47 @@
 
 namespace rb::hand_coded {
 
-// f, grad f and Hess f of the valley, the same expression as the scene's
-// formula (so the argument of cos rounds the same way).
-struct ValleyJet {
+// f, grad f and Hess f of a landscape.
+struct SurfaceJet {
   double f, fx, fy, fxx, fxy, fyy;
 };
 
-inline ValleyJet valley_at(double x, double y) {
-  constexpr double pi = std::numbers::pi;
-  const double u = x * pi + pi;
-  const double c = std::cos(u), s = std::sin(u);
-  return {c / 10.0 - y / 10.0, -s * pi / 10.0, -0.1, -c * pi * pi / 10.0, 0.0, 0.0};
-}
+// valley-sideways: cos(x*pi + pi)/10 - y/10, the same expression as the
+// scene's formula (so the argument of cos rounds the same way).
+struct ValleySurface {
+  SurfaceJet operator()(double x, double y) const {
+    constexpr double pi = std::numbers::pi;
+    const double u = x * pi + pi;
+    const double c = std::cos(u), s = std::sin(u);
+    return {c / 10.0 - y / 10.0, -s * pi / 10.0, -0.1, -c * pi * pi / 10.0, 0.0, 0.0};
+  }
+};
 
-struct Valley {
+// bumpy-long: a (x^2 + y^2) + b sin(3x) cos(2y), one sincos per argument.
+struct BumpySurface {
+  double a = 0.1, b = 0.02;
+  SurfaceJet operator()(double x, double y) const {
+    const double s3 = std::sin(3.0 * x), c3 = std::cos(3.0 * x);
+    const double s2 = std::sin(2.0 * y), c2 = std::cos(2.0 * y);
+    const double bsc = b * s3 * c2;
+    return {a * (x * x + y * y) + bsc,
+            2.0 * a * x + 3.0 * b * c3 * c2,
+            2.0 * a * y - 2.0 * b * s3 * s2,
+            2.0 * a - 9.0 * bsc,
+            -6.0 * b * c3 * s2,
+            2.0 * a - 4.0 * bsc};
+  }
+};
+
+template <class Surface>
+struct Ball {
+  Surface surface;
   double r = 0.1, m = 1.0, g0 = 9.81;
 
   // omega (3) and G(z) = (v', alpha') (5) at z = (v, alpha), as in
   // RollingBall::kinematics but in plain scalars.
   void lie_rhs(const double* z, double* omega, double* dz) const {
-    const ValleyJet f = valley_at(z[3], z[4]);
+    const SurfaceJet f = surface(z[3], z[4]);
     // N = (-fx, -fy, 1) / w and N' = (I - N N^T) n' / w
     const double w = std::sqrt(1.0 + f.fx * f.fx + f.fy * f.fy);
     const double iw = 1.0 / w;
@@ -83,7 +107,8 @@ struct Valley {
 using Flat = std::array<double, kFlatSize>;
 
 // n classical RK4 steps of size h on the flat view.
-inline Flat rk4(const Valley& p, Flat y, double h, long n) {
+template <class Surface>
+Flat rk4(const Ball<Surface>& p, Flat y, double h, long n) {
   Flat k1, k2, k3, k4, Y;
   for (long step = 0; step < n; ++step) {
     p.flat_rhs(y.data(), k1.data());
@@ -99,7 +124,8 @@ inline Flat rk4(const Valley& p, Flat y, double h, long n) {
 }
 
 // n RKMK4 steps (RK4 tableau, closed-form dexpinv) of size h.
-inline Flat rkmk4(const Valley& p, Flat y, double h, long n) {
+template <class Surface>
+Flat rkmk4(const Ball<Surface>& p, Flat y, double h, long n) {
   using Z = std::array<double, kZSize>;
   for (long step = 0; step < n; ++step) {
     Z z, Zs;

@@ -1,0 +1,52 @@
+#pragma once
+// A formula's tape compiled to machine code at run time: the tape as C
+// (formula_codegen.hpp), built by the system's C compiler into a shared
+// object, cached on disk and loaded with dlopen (formula_native.cpp).
+//
+// Settings, read from the environment once per process:
+//   RB_NATIVE_FORMULA=off   keep the tape (tests and fuzzers use it)
+//   RB_NATIVE_CC            the C compiler (default: cc on the PATH)
+//   RB_NATIVE_CACHE         the cache folder (default:
+//                           $XDG_CACHE_HOME/rollbench, else ~/.cache/rollbench)
+// A cache entry is keyed by the generated source, the compiler's identity and
+// version, the flags and the code generator's version; it is verified before
+// it is loaded (a corrupted or stale one is rebuilt) and checked against the
+// tape at a few points after. When no native code can be had, the tape runs
+// and one line on stderr says why, once per process.
+#include <memory>
+#include <string>
+
+namespace rb {
+
+struct FormulaTape;
+
+// The compiled programs of one formula (full jet, and slopes without f).
+struct NativeFormula {
+  using Function = void (*)(double x, double y, double* out);
+  Function full = nullptr;
+  Function slopes = nullptr;
+  std::shared_ptr<void> library;  // keeps the shared object loaded
+
+  explicit operator bool() const { return full != nullptr; }
+};
+
+struct NativeSettings {
+  bool enabled = true;
+  std::string compiler = "cc";
+  std::string cache_dir;
+  static const NativeSettings& from_environment();
+};
+
+// How compile_native went, for the one line and for tests.
+enum class NativeOutcome { cached, built, disabled, unavailable };
+
+struct NativeResult {
+  NativeFormula code;     // empty unless cached or built
+  NativeOutcome outcome;
+  std::string why;        // for unavailable: what went wrong
+};
+
+// The native code for a usable tape (tape.usable()); never throws.
+NativeResult compile_native(const FormulaTape& tape, const NativeSettings& settings);
+
+}  // namespace rb

@@ -1,0 +1,202 @@
+// Native landscapes (problems/formula_native.hpp): the compiled code gives
+// the tape's bits on the test formulas and the fuzz corpus, the cache
+// rebuilds corrupted, truncated and stale entries instead of loading them,
+// and without a compiler the tape runs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "problems/formula.hpp"
+#include "problems/formula_codegen.hpp"
+
+namespace rb {
+namespace {
+
+namespace fs = std::filesystem;
+
+// RB_NATIVE_FORMULA=off is the run without native code: these tests then
+// have nothing to test (the rest of the suite runs on the tape)
+bool native_switched_off() { return !NativeSettings::from_environment().enabled; }
+
+#define SKIP_IF_SWITCHED_OFF() \
+  if (native_switched_off()) GTEST_SKIP() << "RB_NATIVE_FORMULA=off"
+
+// a cache folder of this test alone, removed at the end
+class TempCache {
+ public:
+  explicit TempCache(const std::string& name)
+      : dir_(fs::temp_directory_path() / ("rb_native_" + name + "_" + std::to_string(getpid()))) {
+    fs::remove_all(dir_);
+  }
+  ~TempCache() { fs::remove_all(dir_); }
+  NativeSettings settings() const {
+    NativeSettings s;
+    s.cache_dir = dir_.string();
+    return s;
+  }
+  std::vector<fs::path> entries() const {
+    std::vector<fs::path> out;
+    if (fs::exists(dir_))
+      for (const auto& e : fs::directory_iterator(dir_)) out.push_back(e.path());
+    return out;
+  }
+  const fs::path& dir() const { return dir_; }
+
+ private:
+  fs::path dir_;
+};
+
+// the shared cache, so the agreement tests build each formula once per machine
+NativeSettings shared_cache() {
+  NativeSettings s = NativeSettings::from_environment();
+  s.enabled = true;
+  return s;
+}
+
+bool same_bits(double a, double b) { return (std::isnan(a) && std::isnan(b)) || std::memcmp(&a, &b, sizeof a) == 0; }
+
+void expect_same_jets(const Jet2<double>& a, const Jet2<double>& b, const std::string& where) {
+  const double pa[6] = {a.f, a.fx, a.fy, a.fxx, a.fxy, a.fyy}, pb[6] = {b.f, b.fx, b.fy, b.fxx, b.fxy, b.fyy};
+  for (int i = 0; i < 6; ++i) EXPECT_TRUE(same_bits(pa[i], pb[i])) << where << " part " << i << ": " << pa[i] << " vs " << pb[i];
+}
+
+// native against tape, eval and slopes, at points inside and far outside
+// the landscapes' range
+void expect_native_equals_tape(const std::string& text, const std::map<std::string, double>& params) {
+  Formula tape = Formula::parse(text, params);
+  if (!tape.tape().usable()) return;  // the stack machine's formulas have no native path
+  Formula native = tape;
+  ASSERT_EQ(native.compile_native(shared_cache()) == NativeOutcome::unavailable, false) << text;
+  ASSERT_TRUE(native.is_native()) << text;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  const double points[][2] = {{0.0, 0.0}, {0.3, -0.7}, {-3.1, 2.4}, {1e-300, -1e300}, {inf, 0.5}, {-0.25, std::nan("")}};
+  for (const auto& p : points) {
+    const std::string where = text + " at (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ")";
+    expect_same_jets(native.eval(p[0], p[1]), tape.eval(p[0], p[1]), where + " eval");
+    expect_same_jets(native.slopes(p[0], p[1]), tape.slopes(p[0], p[1]), where + " slopes");
+  }
+}
+
+TEST(FormulaNative, AgreesWithTheTapeBitForBitOnTheTestFormulas) {
+  SKIP_IF_SWITCHED_OFF();
+  const std::map<std::string, double> params = {{"a", 0.5}, {"b", -2.0}};
+  for (const char* text : {"0.05*sin(2*x)*cos(3*y) + 0.1*x^2", "0.5*y^2 + 0.05*x^2", "x", "3",
+                           "a*exp(-(x^2 + y^2)) + b*log(1 + x^2)", "sqrt(1 + x^2 + y^2) - hypot(x, 2)",
+                           "atan2(y, x + 3) + tan(x/4) + asin(y/9) + acos(x/9) + atan(x*y)",
+                           "sinh(x/3)*cosh(y/3) + tanh(x - y) + x^-2 + 2^x + x^1.5 + (x^2+1)^y",
+                           "-(x - y)/(1 + x^2) - 2/(3 + y^2)", "cos(x)*sin(x) + sin(y)^2"})
+    expect_native_equals_tape(text, params);
+}
+
+TEST(FormulaNative, AgreesWithTheTapeBitForBitOnTheFuzzCorpus) {
+  SKIP_IF_SWITCHED_OFF();
+  const std::map<std::string, double> params = {{"a", 0.5}, {"b", -2.0}, {"big", 1e300}};
+  int compiled = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(RB_SOURCE_DIR) / "fuzz" / "corpus" / "fuzz_formula")) {
+    std::ifstream in(entry.path(), std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    try {
+      Formula::parse(text.str(), params);
+    } catch (const InputError&) {
+      continue;  // the corpus holds bad formulas too
+    }
+    expect_native_equals_tape(text.str(), params);
+    ++compiled;
+  }
+  EXPECT_GE(compiled, 10) << "the corpus should hold formulas that parse";
+}
+
+TEST(FormulaNative, GeneratedSourceHoldsNoTextOfTheFormula) {
+  const Formula f = Formula::parse("evil_name*sin(x) + other_name", {{"evil_name", 2.0}, {"other_name", 1.0}});
+  const std::string source = formula_c_source(f.tape());
+  EXPECT_EQ(source.find("evil_name"), std::string::npos);
+  EXPECT_EQ(source.find("other_name"), std::string::npos);
+  EXPECT_NE(source.find("rb_formula_slopes"), std::string::npos);
+}
+
+TEST(FormulaNative, BuildsOnceThenLoadsFromTheCache) {
+  SKIP_IF_SWITCHED_OFF();
+  const TempCache cache("once");
+  Formula f = Formula::parse("0.25*cos(x)*y^2");
+  EXPECT_EQ(f.compile_native(cache.settings()), NativeOutcome::built);
+  ASSERT_EQ(cache.entries().size(), 1u);  // no temporary files left behind
+  Formula again = Formula::parse("0.25*cos(x)*y^2");
+  EXPECT_EQ(again.compile_native(cache.settings()), NativeOutcome::cached);
+  EXPECT_TRUE(again.is_native());
+}
+
+// a broken entry in place of a good one: rebuilt, never loaded
+void expect_rebuilt_after(const std::string& name, const std::function<void(const fs::path&)>& damage) {
+  const TempCache cache(name);
+  const std::string text = "0.1*sin(x*y) + 0.2*x";
+  Formula first = Formula::parse(text);
+  ASSERT_EQ(first.compile_native(cache.settings()), NativeOutcome::built);
+  first.drop_native();
+  const std::vector<fs::path> entries = cache.entries();
+  ASSERT_EQ(entries.size(), 1u);
+  // the damaged copy goes to a second folder: this process has loaded the first
+  const TempCache other(name + "_other");
+  fs::create_directories(other.dir());
+  const fs::path copy = other.dir() / entries[0].filename();
+  fs::copy_file(entries[0], copy);
+  damage(copy);
+  Formula f = Formula::parse(text);
+  EXPECT_EQ(f.compile_native(other.settings()), NativeOutcome::built) << name;
+  ASSERT_TRUE(f.is_native());
+  const Formula tape = Formula::parse(text);
+  expect_same_jets(f.eval(0.4, -1.3), tape.eval(0.4, -1.3), name);
+}
+
+TEST(FormulaNative, RebuildsACorruptedEntry) {
+  SKIP_IF_SWITCHED_OFF();
+  expect_rebuilt_after("corrupted", [](const fs::path& p) {
+    std::fstream io(p, std::ios::binary | std::ios::in | std::ios::out);
+    io.seekp(static_cast<std::streamoff>(fs::file_size(p) / 2));
+    io.put('\x5a').put('\x5a').put('\x5a');
+  });
+}
+
+TEST(FormulaNative, RebuildsATruncatedEntry) {
+  SKIP_IF_SWITCHED_OFF();
+  expect_rebuilt_after("truncated", [](const fs::path& p) { fs::resize_file(p, fs::file_size(p) / 3); });
+}
+
+TEST(FormulaNative, RebuildsAStaleEntryForAnotherFormula) {
+  SKIP_IF_SWITCHED_OFF();
+  // a whole, valid entry of another formula under this formula's name
+  expect_rebuilt_after("stale", [](const fs::path& p) {
+    const TempCache third("stale_source");
+    Formula other = Formula::parse("x^3 - y");
+    ASSERT_EQ(other.compile_native(third.settings()), NativeOutcome::built);
+    fs::copy_file(third.entries().at(0), p, fs::copy_options::overwrite_existing);
+  });
+}
+
+TEST(FormulaNative, WithoutACompilerTheTapeRuns) {
+  const TempCache cache("no_compiler");
+  NativeSettings s = cache.settings();
+  s.compiler = "/nonexistent/rb-cc";
+  Formula f = Formula::parse("x^2 + y");
+  EXPECT_EQ(f.compile_native(s), NativeOutcome::unavailable);
+  EXPECT_FALSE(f.is_native());
+  EXPECT_EQ(f.eval(3.0, 1.0).f, 10.0);
+  s.compiler = "false";  // runs, but compiles nothing
+  EXPECT_EQ(f.compile_native(s), NativeOutcome::unavailable);
+  s.enabled = false;
+  EXPECT_EQ(f.compile_native(s), NativeOutcome::disabled);
+  EXPECT_EQ(f.slopes(3.0, 1.0).fx, 6.0);
+}
+
+}  // namespace
+}  // namespace rb
