@@ -24,7 +24,7 @@
 set -euo pipefail
 source_dir="$(cd "$(dirname "$0")/../.." && pwd)"
 here="$source_dir/scripts/slurm"
-usage() { sed -n '5,20p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
+usage() { sed -n '6,20p' "$0" | sed 's/^# \{0,1\}//'; exit "$1"; }
 die() { echo "submit: $*" >&2; exit 2; }
 
 dir="" shards=4 only="" plot=1 wait=0 sbatch_opts=()
@@ -38,7 +38,7 @@ while [ $# -gt 0 ]; do
     --no-plot) plot=0; shift ;;
     --wait) wait=1; shift ;;
     --) shift; break ;;
-    -h | --help) usage ;;
+    -h | --help) usage 0 ;;
     *) die "unknown option '$1' (rollbench's options go after --)" ;;
   esac
 done
@@ -59,6 +59,9 @@ if [ -n "$only" ]; then
   done
 else
   [ $# -gt 0 ] || die "no RUN-OPTIONS after --: say what to run (e.g. -- --preset full)"
+  for arg in "$@"; do
+    case "$arg" in --shard | --shard=* | --out | --out=*) die "RUN-OPTIONS: leave $arg out: each shard gets its own" ;; esac
+  done
   printf '%s\n' "$@" > "$dir/run-args"
   echo "$shards" > "$dir/shard-count"
   rm -f "$dir"/shards/shard-*.json "$dir/report.json"

@@ -111,8 +111,10 @@ same_accuracy() { /usr/bin/python3 "$root/tests/slurm/same_accuracy.py" "$@"; }
 
 # 1. three shards against the unsharded run
 "$rollbench" run --preset quick --out "$tmp/whole.json" >/dev/null 2>&1
-ROLLBENCH="$rollbench" submit --dir "$tmp/study" --shards 3 --wait -- --preset quick \
-  || fail "the sharded study did not complete (exit $?)"
+ROLLBENCH="$rollbench" submit --dir "$tmp/study" --shards 3 --wait -- --preset quick | tee "$tmp/submit.out" \
+  || fail "the sharded study did not complete (exit ${PIPESTATUS[0]})"
+grep -Eq '^slurm: [0-9]+ s: shards done [0-3]/3, running [0-3], pending [0-3]' "$tmp/submit.out" \
+  || fail "no progress lines while waiting"
 [ -f "$tmp/study/plots/summary.md" ] || fail "the merge job made no plots"
 same_accuracy "$tmp/whole.json" "$tmp/study/report.json" || fail "the merged report differs from the unsharded run"
 echo "== ok: 3 shards merged equal the unsharded run in every accuracy field"
