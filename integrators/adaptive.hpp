@@ -2,7 +2,7 @@
 // The loop every adaptive method shares, in the spirit of drive_fixed_step:
 // the step-size controller's steps, landing on each output time (clamped
 // steps for controlled steppers, interpolation for dense output), the
-// per-step validity check, the full check at outputs, the step budget
+// validity check of every accepted state, the step budget
 // (accepted + rejected), step-size underflow, and turning a library's
 // failures into statuses with the time of the last valid state.
 //
@@ -96,6 +96,10 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
     return std::move(run.stopped(status, reason, last_valid, t_valid));
   };
   if (const Validity v = attainable(tol, y); v.status != Status::ok) return stop(v.status, v.reason, y, t);
+  // the start, checked as every accepted state is (see below)
+  ++run.cost.validity_checks;
+  if (const Validity v = problem.check_full(y); v.status != Status::ok)
+    return stop(v.status, model_stop_reason(v, t), y, t);
   double h = options.h > 0.0 ? options.h : initial_step(problem, y, tol, order, t_end, run.cost);
   FlatState y_new, y_out;  // reused: no allocation in the loop
   std::size_t next = 0;  // the next output to record
@@ -132,36 +136,33 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
     // controller's previous proposal when it was larger
     h = lands ? std::max(h_next, h) : h_next;
     // a step to an invalid state ends the run at the last valid one; no
-    // output is interpolated towards it
+    // output is interpolated towards it. The model's limits are checked at
+    // every accepted state by one evaluation there (a library's stepper
+    // does not say where it evaluates), counted like drive_fixed_step's
     stepper.state(y_new);
     const Validity v = problem.check_step(y_new);
     if (v.status != Status::ok) return stop(v.status, v.reason, y, t_old);
-    // record every output this step reached, checked in full; a failing
-    // output ends the run there with its state, as in drive_fixed_step
+    ++run.cost.validity_checks;
+    if (const Validity m = problem.check_full(y_new); m.status != Status::ok)
+      return stop(m.status, model_stop_reason(m, t), y, t_old);
+    // record every output this step reached
     if constexpr (Stepper::dense_output) {
-      // the last state known valid: the step's start, then each output kept
-      const FlatState* valid = &y;
-      double t_valid = t_old;
       for (; next < outputs.size() && outputs[next] <= t; ++next) {
         const double t_out = outputs[next];
         if (t_out == t)
           y_out = y_new;
         else
           stepper.interpolate(t_out, y_out);
-        const Validity full = problem.check_full(y_out);
-        if (full.status != Status::ok) {
-          // a non-finite interpolant (the dense output can see what the
-          // step's end did not) is not a state to end on
-          if (!y_out.allFinite()) return stop(full.status, full.reason, *valid, t_valid);
-          return stop(full.status, full.reason, y_out, t_out);
+        // a non-finite interpolant (the dense output can see what the
+        // step's end did not) is not a state to end on
+        const Validity at = problem.check_step(y_out);
+        if (at.status != Status::ok) {
+          const bool none = run.output.y.empty();
+          return stop(at.status, at.reason, none ? y : run.output.y.back(), none ? t_old : run.output.t.back());
         }
         run.output.push(t_out, y_out);
-        valid = &run.output.y.back();
-        t_valid = t_out;
       }
     } else if (lands) {
-      const Validity full = problem.check_full(y_new);
-      if (full.status != Status::ok) return stop(full.status, full.reason, y_new, t);
       run.output.push(t, y_new);
       ++next;
     }

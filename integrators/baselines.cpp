@@ -49,11 +49,14 @@ std::string Rk4Quaternion::description() const {
 }
 
 RunResult Rk4Quaternion::integrate(const Problem& problem, const RunOptions& options) const {
+  const bool anisotropic = problem.model().anisotropic();
   auto f = [&](const QuatState& x, QuatState& dx) {
     Vec3 omega;
     ZState g;
     const ZState z = x.tail<kZSize>();
-    problem.lie_rhs(z.data(), omega.data(), g.data());
+    // R enters only for an anisotropic ball: then the stage's own q
+    const Mat3 R = anisotropic ? rotation_of_quaternion(x.head<4>().normalized()) : Mat3::Identity();
+    problem.lie_rhs(R, z.data(), omega.data(), g.data());
     // (0, omega) (x) q = (-omega . q_v, q_w omega + omega x q_v)
     const Vec3 qv = x.segment<3>(1);
     dx[0] = -0.5 * omega.dot(qv);

@@ -1,5 +1,7 @@
 #include "integrators/fixed_step.hpp"
 
+#include <cstdio>
+
 namespace rb {
 
 std::vector<double> output_times_of(const Problem& problem, const RunOptions& options) {
@@ -16,6 +18,13 @@ std::vector<double> output_times_of(const Problem& problem, const RunOptions& op
   }
   if (times.empty() || times.back() < t_end) times.push_back(t_end);
   return times;
+}
+
+std::string model_stop_reason(const Validity& v, double t) {
+  if (v.status != Status::curvature && v.status != Status::lift_off) return v.reason;
+  char at[48];
+  std::snprintf(at, sizeof at, " at t = %.9g", t);
+  return v.reason + at;
 }
 
 }  // namespace rb

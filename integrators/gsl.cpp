@@ -66,6 +66,9 @@ constexpr double kFixedStepNewtonTol = 1e-13;
 // Per-run state the C callbacks see through gsl_odeiv2_system::params.
 struct CallbackState {
   const Problem* problem = nullptr;
+  // when set, the next rhs call also fills it with the validity margins at
+  // its y and clears it (see the fixed-step drive)
+  ModelMargins* margins = nullptr;
   long rhs_evals = 0;
   long jacobian_evals = 0;
   std::string exception;  // what a callback caught, empty when none
@@ -81,7 +84,12 @@ int rhs_callback_unchecked(double /*t*/, const double y[], double dydt[], void* 
   auto& s = *static_cast<CallbackState*>(params);
   ++s.rhs_evals;
   try {
-    s.problem->flat_rhs(y, dydt);
+    if (s.margins) {
+      s.problem->flat_rhs(y, dydt, *s.margins);
+      s.margins = nullptr;
+    } else {
+      s.problem->flat_rhs(y, dydt);
+    }
   } catch (const std::exception& e) {
     s.exception = e.what();
     return GSL_EBADFUNC;
@@ -269,7 +277,17 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
         y.setConstant(std::numeric_limits<double>::quiet_NaN());
       }
     };
-    RunResult run = drive_fixed_step(problem, options, advance);
+    // an explicit stepper's first evaluation is at y (no dydt_in): it gives
+    // the driver the validity margins there for free
+    auto advance_giving_margins = [&](const FlatState& y, FlatState& next, double t, double h, Cost& cost,
+                                      ModelMargins& margins) {
+      next = y;
+      cb.margins = &margins;
+      advance(next, t, h, cost);
+      cb.margins = nullptr;
+    };
+    RunResult run = info.implicit ? drive_fixed_step(problem, options, advance)
+                                  : drive_fixed_step(problem, options, advance_giving_margins);
     if (failure != GSL_SUCCESS) {
       const Validity v = failure_of(failure, cb, stepper, false, fail_t, fail_h);
       run.status = v.status;
@@ -296,6 +314,9 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
   // GSL's controller would accept steps at a tolerance below rounding (its
   // error estimate is noise there): refuse it up front, as odeint's adapters do
   if (const Validity v = attainable({options.rtol, options.atol}, y); v.status != Status::ok) return stop(v, y, t);
+  ++run.cost.validity_checks;
+  if (const Validity v = problem.check_full(y); v.status != Status::ok)
+    return stop({v.status, model_stop_reason(v, t)}, y, t);
   const double h0 = options.h > 0.0 ? options.h : 1e-3 * outputs.back();
   double h = h0;
   const DriverPtr driver(
@@ -324,11 +345,11 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
         return stop(failure_of(s, cb, stepper, true, t_prev, h), y_prev, t_prev);
       }
       ++run.cost.steps;
-      const Validity v = problem.check_step(y);
-      if (v.status != Status::ok) return stop(v, y_prev, t_prev);
+      // every accepted state against the model's limits, as drive_adaptive does
+      ++run.cost.validity_checks;
+      const Validity v = problem.check_full(y);
+      if (v.status != Status::ok) return stop({v.status, model_stop_reason(v, t)}, y_prev, t_prev);
     }
-    const Validity v = problem.check_full(y);
-    if (v.status != Status::ok) return stop(v, y, t);
     run.output.push(t, y);
   }
   run.final_state = y;

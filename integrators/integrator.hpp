@@ -30,6 +30,10 @@ struct Cost {
   long jacobian_evals = 0;  // evaluations of the 14x14 Jacobian of F
   long exp_evals = 0;       // so(3) exponentials (Lie-group methods)
   long dexpinv_evals = 0;   // dexpinv applications (Lie-group methods)
+  // states checked against the model's limits (lift-off, curvature): each
+  // accepted state and the start, once (the same count for every method
+  // with the same number of accepted steps)
+  long validity_checks = 0;
 };
 
 // The states at the recorded output times, in order.

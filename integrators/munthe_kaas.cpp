@@ -25,27 +25,33 @@ struct MkStep {
   const Problem& problem;
   const StageTerms& terms;
   DexpinvKind kind;
+  bool anisotropic;                   // stage orientations needed
   std::array<Vec3, kMaxStages>& K;    // u' at the stages
   std::array<ZState, kMaxStages>& L;  // z' at the stages
 
-  void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost) const {
+  // margins: the validity margins at y, from the first stage (at y itself)
+  void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost,
+                  ModelMargins& margins) const {
     const int stages = S > 0 ? S : terms.stages;
     const ZState z = z_of(y);
-    for (std::size_t i = 0; i < static_cast<std::size_t>(stages); ++i) {
+    const Mat3 R = rotation_of(y);
+    // the first stage, at u = 0 (dexpinv the identity) and R itself
+    problem.lie_rhs(R, z.data(), K[0].data(), L[0].data(), margins);
+    for (std::size_t i = 1; i < static_cast<std::size_t>(stages); ++i) {
       const StageTerms::Row& row = terms.a[i];
-      Vec3 omega;
-      if (row.count == 0) {
-        // at u = 0, dexpinv is the identity
-        problem.lie_rhs(z.data(), omega.data(), L[i].data());
-        K[i] = omega;
-        continue;
-      }
       // U = sum h a_ij K_j, Z = z + sum h a_ij L_j over the non-zero terms
       ZState Z;
       Vec3 U;
       row.sum(Z, z, h, L);
       row.sum(U, h, K);
-      problem.lie_rhs(Z.data(), omega.data(), L[i].data());
+      Vec3 omega;
+      if (anisotropic) {
+        // R enters omega and G: evaluate at the stage's own orientation
+        problem.lie_rhs(Mat3(so3_exp(U) * R), Z.data(), omega.data(), L[i].data());
+        ++cost.exp_evals;
+      } else {
+        problem.lie_rhs(R, Z.data(), omega.data(), L[i].data());
+      }
       K[i] = dexpinv(U, omega, kind);
       ++cost.dexpinv_evals;
     }
@@ -53,7 +59,7 @@ struct MkStep {
     ZState dz;
     terms.b.sum(u, h, K);
     terms.b.sum(dz, h, L);
-    set_rotation(next, so3_exp(u) * rotation_of(y));
+    set_rotation(next, so3_exp(u) * R);
     next.tail<kZSize>() = z + dz;
     cost.rhs_evals += stages;
     ++cost.exp_evals;
@@ -66,12 +72,13 @@ RunResult MuntheKaas::integrate(const Problem& problem, const RunOptions& option
   const StageTerms terms(tableau_);
   std::array<Vec3, kMaxStages> K;
   std::array<ZState, kMaxStages> L;
+  const bool aniso = problem.model().anisotropic();
   switch (terms.stages) {
-    case 1: return drive_fixed_step(problem, options, MkStep<1>{problem, terms, dexpinv_, K, L});
-    case 2: return drive_fixed_step(problem, options, MkStep<2>{problem, terms, dexpinv_, K, L});
-    case 3: return drive_fixed_step(problem, options, MkStep<3>{problem, terms, dexpinv_, K, L});
-    case 4: return drive_fixed_step(problem, options, MkStep<4>{problem, terms, dexpinv_, K, L});
-    default: return drive_fixed_step(problem, options, MkStep<0>{problem, terms, dexpinv_, K, L});
+    case 1: return drive_fixed_step(problem, options, MkStep<1>{problem, terms, dexpinv_, aniso, K, L});
+    case 2: return drive_fixed_step(problem, options, MkStep<2>{problem, terms, dexpinv_, aniso, K, L});
+    case 3: return drive_fixed_step(problem, options, MkStep<3>{problem, terms, dexpinv_, aniso, K, L});
+    case 4: return drive_fixed_step(problem, options, MkStep<4>{problem, terms, dexpinv_, aniso, K, L});
+    default: return drive_fixed_step(problem, options, MkStep<0>{problem, terms, dexpinv_, aniso, K, L});
   }
 }
 

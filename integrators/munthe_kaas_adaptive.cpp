@@ -64,12 +64,12 @@ class LieStepper {
   Attempt attempt(double t, double& h, Cost& cost) {
     const EmbeddedPair& p = *pair_;
     if (!have_first_) {
-      problem_->lie_rhs(z_.data(), omega_first_.data(), g_first_.data());
+      problem_->lie_rhs(R_, z_.data(), omega_first_.data(), g_first_.data());
       ++cost.rhs_evals;
       have_first_ = true;
     }
     k_[0] << omega_first_, g_first_;
-    for (int i = 1; i < p.stages; ++i) evaluate_stage(i, h, z_, cost);
+    for (int i = 1; i < p.stages; ++i) evaluate_stage(i, h, R_, z_, cost);
     LieVec w_new;  // the step: (u_n+1, z_n+1 - z_n)
     if (p.fsal < p.stages) {
       w_new = w_fsal_;
@@ -115,7 +115,7 @@ class LieStepper {
       omega_first_ = omega_fsal_;
       g_first_ = k_[p.fsal].tail<kZSize>();
     } else {
-      problem_->lie_rhs(z_.data(), omega_first_.data(), g_first_.data());
+      problem_->lie_rhs(R_, z_.data(), omega_first_.data(), g_first_.data());
       ++cost.rhs_evals;
     }
     if constexpr (Dense) dense_outputs(t, h_step, w_new, cost);
@@ -150,15 +150,21 @@ class LieStepper {
     return h * sum;
   }
 
-  // k_i = (dexpinv_U(omega(Z)), G(Z)) at (U, Z - z_n) = h sum_j a_ij k_j,
-  // z_n the step's start.
-  void evaluate_stage(int i, double h, const ZState& z_n, Cost& cost) {
+  // k_i = (dexpinv_U(omega(R_i, Z)), G(R_i, Z)) at (U, Z - z_n) =
+  // h sum_j a_ij k_j, (R_n, z_n) the step's start; the stage orientation
+  // R_i = exp(hat(U)) R_n is formed only where R enters (anisotropic ball).
+  void evaluate_stage(int i, double h, const Mat3& R_n, const ZState& z_n, Cost& cost) {
     const EmbeddedPair& p = *pair_;
     const LieVec w = combine(rows_[static_cast<std::size_t>(i)], h);
     const ZState z = z_n + w.tail<kZSize>();
     Vec3 omega;
     ZState g;
-    problem_->lie_rhs(z.data(), omega.data(), g.data());
+    if (problem_->model().anisotropic()) {
+      problem_->lie_rhs(Mat3(so3_exp(w.head<3>()) * R_n), z.data(), omega.data(), g.data());
+      ++cost.exp_evals;
+    } else {
+      problem_->lie_rhs(R_n, z.data(), omega.data(), g.data());
+    }
     ++cost.rhs_evals;
     k_[static_cast<std::size_t>(i)] << dexpinv(w.head<3>(), omega), g;
     ++cost.dexpinv_evals;
@@ -196,7 +202,7 @@ class LieStepper {
       k_[static_cast<std::size_t>(p.fsal)] << dexpinv(w_new.head<3>(), omega_first_), g_first_;
       ++cost.dexpinv_evals;
     }
-    for (int i = p.fsal + 1; i < p.total; ++i) evaluate_stage(i, h, z_prev_, cost);
+    for (int i = p.fsal + 1; i < p.total; ++i) evaluate_stage(i, h, R_prev_, z_prev_, cost);
     for (std::size_t m = next_out_; m < out.size() && out[m] < t + h; ++m) {
       const double theta = (out[m] - t) / h;
       LieVec sum = LieVec::Zero();

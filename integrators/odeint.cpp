@@ -60,12 +60,28 @@ class OdeintFixed final : public OdeintIntegrator {
     Stepper stepper;
     OdeintState x;
     load(problem.y0(), x);
-    auto step = [&](const FlatState& /*y, held in x*/, FlatState& next, double t, double h, Cost& cost) {
-      stepper.do_step(OdeintSystem{&problem, &cost.rhs_evals}, x, t, h);
-      store(x, next);
-    };
-    return drive_fixed_step(problem, options, step);
+    if constexpr (kFirstCallAtStart) {
+      // the first evaluation of every do_step is at x: it gives the margins
+      auto step = [&](const FlatState& /*y, held in x*/, FlatState& next, double t, double h, Cost& cost,
+                      ModelMargins& margins) {
+        ModelMargins* pending = &margins;
+        stepper.do_step(OdeintSystem{&problem, &cost.rhs_evals, &pending}, x, t, h);
+        store(x, next);
+      };
+      return drive_fixed_step(problem, options, step);
+    } else {
+      auto step = [&](const FlatState& /*y, held in x*/, FlatState& next, double t, double h, Cost& cost) {
+        stepper.do_step(OdeintSystem{&problem, &cost.rhs_evals}, x, t, h);
+        store(x, next);
+      };
+      return drive_fixed_step(problem, options, step);
+    }
   }
+
+ private:
+  // dopri5 reuses its last evaluation (FSAL), at the step's end: the model
+  // check then takes an evaluation of its own
+  static constexpr bool kFirstCallAtStart = !std::is_same_v<Stepper, ode::runge_kutta_dopri5<OdeintState>>;
 };
 
 // Adams-Bashforth-Moulton keeps the derivatives of its last Steps steps and

@@ -19,11 +19,20 @@ using OdeintState = std::array<double, kFlatSize>;
 
 // The flat view as an odeint system, dxdt = F(x). evals points to a counter
 // of the run (integrators are shared across threads and keep no state).
+// When *margins is set, the next call also fills it with the validity
+// margins at its x and clears it (a one-step stepper's first call is at the
+// step's start: drive_fixed_step's margins for free).
 struct OdeintSystem {
   const Problem* problem;
   long* evals;
+  ModelMargins** margins = nullptr;
   void operator()(const OdeintState& x, OdeintState& dxdt, double /*t*/) const {
-    problem->flat_rhs(x.data(), dxdt.data());
+    if (margins && *margins) {
+      problem->flat_rhs(x.data(), dxdt.data(), **margins);
+      *margins = nullptr;
+    } else {
+      problem->flat_rhs(x.data(), dxdt.data());
+    }
     ++*evals;
   }
 };

@@ -27,12 +27,15 @@ struct RkStep {
   std::array<FlatState, kMaxStages>& k;
   FlatState& Y;
 
-  void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost) const {
+  // margins: the validity margins at y, from the first stage (at y itself)
+  void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost,
+                  ModelMargins& margins) const {
     const int stages = S > 0 ? S : terms.stages;
-    for (int i = 0; i < stages; ++i) {
+    problem.flat_rhs(y.data(), k[0].data(), margins);
+    for (int i = 1; i < stages; ++i) {
       const StageTerms::Row& row = terms.a[static_cast<std::size_t>(i)];
       // the stage's state, y + h a_i0 k_0 + h a_i1 k_1 + ... (the non-zero
-      // terms); with none (always the first stage) y itself, uncopied
+      // terms); with none y itself, uncopied
       const FlatState* at = &y;
       if (row.count > 0) {
         row.sum(Y, y, h, k);

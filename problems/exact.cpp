@@ -164,6 +164,9 @@ double required_param(const Scene& scene, const char* name, const std::string& w
 std::shared_ptr<const ExactSolution> make_exact(const Scene& scene, const RollingBall& model) {
   const std::string& name = scene.exact;
   if (name == "none") return nullptr;
+  if (scene.ball.inertia)
+    throw InputError("'" + name + "' is a closed form of the homogeneous ball; a scene with ball.inertia has none",
+                     "exact");
   const double r = scene.ball.radius, g0 = scene.gravity;
   const Vec2 a0 = scene.start.contact;
   const Vec3 omega0 = start_omega(scene, model);

@@ -29,17 +29,26 @@ Validity Problem::check_step(const FlatState& y) const {
   return {};
 }
 
-Validity Problem::check_full(const FlatState& y) const {
-  Validity v = check_step(y);
-  if (v.status != Status::ok) return v;
-  const Derived d = model_.derived(y);
-  if (!std::isfinite(d.energy) || !std::isfinite(d.normal_force) || !std::isfinite(d.kappa1))
+Validity Problem::check_model(const ModelMargins& m) const {
+  if (!std::isfinite(m.normal_force) || !std::isfinite(m.det_E) || !std::isfinite(m.mean_curvature) ||
+      !std::isfinite(m.gauss_curvature))
     return {Status::diverged, "the landscape or its derivatives are not finite at the contact point"};
+  // r max(k1, k2) < 1 exactly when (1 - r k1) + (1 - r k2) > 0 and
+  // (1 - r k1)(1 - r k2) > 0: no square root on the way
   const double r = model_.params().radius;
-  if (r * d.kappa1 >= 1.0) return {Status::curvature, describe("r * max curvature reached ", r * d.kappa1)};
-  if (d.det_E <= 1e-12) return {Status::curvature, describe("E = C'^T C' is singular, det E = ", d.det_E)};
-  if (d.normal_force <= 0.0) return {Status::lift_off, describe("the normal force fell to ", d.normal_force)};
+  const double sum = 2.0 * (1.0 - r * m.mean_curvature);
+  const double product = 1.0 - 2.0 * r * m.mean_curvature + r * r * m.gauss_curvature;
+  if (!(sum > 0.0) || !(product > 0.0))
+    return {Status::curvature, describe("r * max curvature reached ", m.r_kappa_max(r))};
+  if (m.det_E <= 1e-12) return {Status::curvature, describe("E = C'^T C' is singular, det E = ", m.det_E)};
+  if (m.normal_force <= 0.0) return {Status::lift_off, describe("the normal force fell to ", m.normal_force)};
   return {};
+}
+
+Validity Problem::check_full(const FlatState& y) const {
+  const Validity v = check_step(y);
+  if (v.status != Status::ok) return v;
+  return check_model(model_.margins_at(y));
 }
 
 }  // namespace rb

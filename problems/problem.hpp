@@ -1,6 +1,6 @@
 #pragma once
 // What every problem offers the integrators (DESIGN.md): the flat view F(y),
-// the Lie-group view (omega(z), G(z)), the start, the validity checks of
+// the Lie-group view (omega(R, z), G(R, z)), the start, the validity checks of
 // MODEL.md ("Where the model stops holding") and an exact solution if known.
 //
 // A Problem is immutable and shared read-only by every run and thread; runs
@@ -65,14 +65,25 @@ class Problem {
   // The flat view: dy = F(y), 14 numbers each.
   template <class T>
   void flat_rhs(const T* y, T* dy) const { model_.flat_rhs(y, dy); }
-  // The Lie-group view: omega(z) and G(z), z and dz 5 numbers, omega 3.
+  // The same, also giving the validity margins at y (no extra work but a
+  // few products: the quantities come from the evaluation itself).
+  void flat_rhs(const double* y, double* dy, ModelMargins& margins) const { model_.flat_rhs(y, dy, margins); }
+  // The Lie-group view at orientation R: omega(R, z) and G(R, z), z and dz
+  // 5 numbers, omega 3. R matters only where model().anisotropic().
   template <class T>
-  void lie_rhs(const T* z, T* omega, T* dz) const { model_.lie_rhs(z, omega, dz); }
+  void lie_rhs(const Mat3& R, const T* z, T* omega, T* dz) const { model_.lie_rhs(R, z, omega, dz); }
+  void lie_rhs(const Mat3& R, const double* z, double* omega, double* dz, ModelMargins& margins) const {
+    model_.lie_rhs(R, z, omega, dz, margins);
+  }
 
   // Cheap check for every step: the state is finite and inside the domain.
   Validity check_step(const FlatState& y) const;
-  // Every check of MODEL.md: also lift-off (F . N <= 0), curvature
-  // (r max kappa >= 1 or E singular) and a non-finite landscape.
+  // The model's own limits from the margins of an evaluation: lift-off
+  // (F . N <= 0), curvature (r max kappa >= 1 or E singular), a non-finite
+  // landscape.
+  Validity check_model(const ModelMargins& margins) const;
+  // Every check of MODEL.md at one state: check_step, then check_model
+  // from one evaluation at y (for states no stage evaluates).
   Validity check_full(const FlatState& y) const;
 
  private:

@@ -1,18 +1,71 @@
 #include "problems/rolling_ball.hpp"
 
+#include <algorithm>
+
 #include "problems/so3.hpp"
 
 namespace rb {
+
+double ModelMargins::r_kappa_max(double r) const {
+  return r * (mean_curvature + std::sqrt(std::max(0.0, mean_curvature * mean_curvature - gauss_curvature)));
+}
+
+RollingBall::RollingBall(Landscape landscape, BallParams params)
+    : landscape_(std::move(landscape)), p_(params) {
+  const double mr2 = p_.mass * p_.radius * p_.radius;
+  const Vec3* I = p_.inertia ? &*p_.inertia : nullptr;
+  anisotropic_ = I && !((*I)[0] == (*I)[1] && (*I)[1] == (*I)[2]);
+  if (anisotropic_) {
+    inv_d_ = (I->array() + mr2).inverse().matrix();
+  } else if (I) {
+    theta_ = (*I)[0];
+    iso_scale_ = 1.0 / (theta_ + mr2);
+    iso_normal_ = mr2 / theta_;
+  } else {
+    // the homogeneous ball's constants as they always were
+    theta_ = 0.4 * mr2;
+    iso_scale_ = (5.0 / 7.0) / mr2;
+    iso_normal_ = 2.5;
+  }
+}
 
 Vec3 RollingBall::normal_at(double x, double y) const {
   const Jet2<double> f = landscape_.at(x, y);
   return Vec3(-f.fx, -f.fy, 1.0).normalized();
 }
 
+ModelMargins RollingBall::margins_at(const FlatState& y) const {
+  return margins_of(kinematics(RowMajorRotation<double>{y.data() + kOffsetR}, y.data() + kOffsetV));
+}
+
+Mat3 RollingBall::contact_inertia(const Mat3& R, const Vec3& N) const {
+  const double mr2 = p_.mass * p_.radius * p_.radius;
+  const Mat3 about_centre =
+      anisotropic_ ? Mat3(R * p_.inertia->asDiagonal() * R.transpose()) : Mat3(theta_ * Mat3::Identity());
+  return about_centre + mr2 * (Mat3::Identity() - N * N.transpose());
+}
+
+Vec3 RollingBall::omega_from_momentum(const Mat3& R, const Vec3& N, const Vec3& v) const {
+  // equal moments: T^-1 = s (I + c N N^T), as in kinematics
+  if (!anisotropic_) return (v + iso_normal_ * N * N.dot(v)) * iso_scale_;
+  const double n[3] = {N.x(), N.y(), N.z()};
+  double w[3];
+  anisotropic_omega(R, n, v.data(), w);
+  return {w[0], w[1], w[2]};
+}
+
+Vec3 RollingBall::momentum_from_omega(const Mat3& R, const Vec3& N, const Vec3& omega) const {
+  const double mr2 = p_.mass * p_.radius * p_.radius;
+  // the homogeneous ball's T omega = m r^2 (7/5 omega - N (N . omega)), as it always was
+  if (!p_.inertia) return mr2 * (1.4 * omega - N * N.dot(omega));
+  return contact_inertia(R, N) * omega;
+}
+
 Derived RollingBall::derived(const FlatState& y) const {
   const double r = p_.radius, m = p_.mass, g0 = p_.gravity;
-  const Kinematics<double> k = kinematics(y.data() + kOffsetV);
-  const Jet2<double>& f = k.f;
+  const Mat3 R = rotation_of(y);
+  const Kinematics<double> k = kinematics(R, y.data() + kOffsetV);
+  const ModelMargins margins = margins_of(k);
   const Vec3 v = momentum_of(y);
   const Vec2 alpha = contact_of(y);
   Derived d;
@@ -26,26 +79,20 @@ Derived RollingBall::derived(const FlatState& y) const {
 
   // contact force F = m c'' - m g with c'' = r (omega' x N + omega x N_dot),
   // omega' = T^-1 (v' - T' omega), T' omega = -m r^2 (N_dot (N.omega) + N (N_dot.omega))
+  // plus, for the anisotropic ball, the gyroscopic d/dt(R Theta R^T) omega = omega x (R Theta R^T omega)
   const Vec3 N_dot = k.N_d * k.alpha_dot;
-  const Vec3 T_d_omega = -m * r * r * (N_dot * k.N.dot(k.omega) + k.N * N_dot.dot(k.omega));
-  const Vec3 omega_dot = omega_from_momentum(k.N, Vec3(k.v_dot - T_d_omega));
+  Vec3 T_d_omega = -m * r * r * (N_dot * k.N.dot(k.omega) + k.N * N_dot.dot(k.omega));
+  if (anisotropic_) T_d_omega += k.omega.cross(R * p_.inertia->asDiagonal() * R.transpose() * k.omega);
+  const Vec3 omega_dot = omega_from_momentum(R, k.N, Vec3(k.v_dot - T_d_omega));
   const Vec3 c_dd = r * (omega_dot.cross(k.N) + k.omega.cross(N_dot));
   const Vec3 F = m * c_dd + Vec3(0.0, 0.0, m * g0);
   d.normal_force = F.dot(k.N);
 
-  // principal curvatures: eigenvalues of I^-1 II, first fundamental form
-  // I = [[1 + fx^2, fx fy], [fx fy, 1 + fy^2]], second II = Hess f / w
-  const double w2 = 1.0 + f.fx * f.fx + f.fy * f.fy;
-  const double w = std::sqrt(w2);
-  const double e = f.fxx / w, fm = f.fxy / w, g = f.fyy / w;
-  const double E1 = 1.0 + f.fx * f.fx, F1 = f.fx * f.fy, G1 = 1.0 + f.fy * f.fy;
-  const double gauss = (e * g - fm * fm) / w2;
-  const double mean = 0.5 * (e * G1 - 2.0 * fm * F1 + g * E1) / w2;
-  const double disc = std::sqrt(std::max(0.0, mean * mean - gauss));
-  d.kappa1 = mean + disc;
-  d.kappa2 = mean - disc;
+  const double disc = std::sqrt(std::max(0.0, margins.mean_curvature * margins.mean_curvature -
+                                                  margins.gauss_curvature));
+  d.kappa1 = margins.mean_curvature + disc;
+  d.kappa2 = margins.mean_curvature - disc;
 
-  const Mat3 R = rotation_of(y);
   d.rotation_defect = rb::rotation_defect(R);
   d.det_defect = R.determinant() - 1.0;
   return d;

@@ -1,11 +1,15 @@
 #pragma once
-// The rolling-ball ODE of MODEL.md: a homogeneous ball of radius r and mass m
-// rolling without slipping on z = f(x, y) under gravity (0, 0, -g0).
+// The rolling-ball ODE of MODEL.md: a ball of radius r and mass m rolling
+// without slipping on z = f(x, y) under gravity (0, 0, -g0). The ball is
+// homogeneous unless its principal moments are given (a Chaplygin ball,
+// "A ball whose orientation matters"): then R enters T(R, alpha).
 //
 // The right-hand side is a template over the scalar type T so that it runs on
 // doubles in the step loop and on forward-mode AD numbers for the exact
 // Jacobian. Nothing here allocates.
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include "problems/landscape.hpp"
 #include "problems/state.hpp"
@@ -16,6 +20,30 @@ struct BallParams {
   double radius = 0.1;  // r > 0
   double mass = 1.0;    // m > 0
   double gravity = 9.81;  // g0: gravity is (0, 0, -g0)
+  // Principal moments (I1, I2, I3) about the body axes; absent: the
+  // homogeneous ball, (2/5) m r^2 each, and R does not enter the motion.
+  std::optional<Vec3> inertia;
+};
+
+// What the validity checks of MODEL.md ("Where the model stops holding")
+// need at one state, taken from an evaluation of the right-hand side: no
+// extra landscape evaluation.
+struct ModelMargins {
+  // NaN until filled: margins a step failed to fill read as not finite
+  static constexpr double kUnset = std::numeric_limits<double>::quiet_NaN();
+  double normal_force = kUnset;     // F . N = m g0 N_z - m r (N' alpha') . (omega x N)
+  double det_E = kUnset;            // det(C'^T C')
+  double mean_curvature = kUnset;   // (k1 + k2) / 2 of the landscape at the contact
+  double gauss_curvature = kUnset;  // k1 k2
+  // r max(k1, k2), from the two above (a square root: for messages)
+  double r_kappa_max(double r) const;
+};
+
+// Read access to R stored row by row in a flat state.
+template <class T>
+struct RowMajorRotation {
+  const T* p;
+  const T& operator()(int i, int j) const { return p[3 * i + j]; }
 };
 
 // Everything the equations of motion need at one state (v, alpha), in the
@@ -52,32 +80,74 @@ struct Derived {
 
 class RollingBall {
  public:
-  RollingBall(Landscape landscape, BallParams params)
-      : landscape_(std::move(landscape)), p_(params) {}
+  RollingBall(Landscape landscape, BallParams params);
 
   const Landscape& landscape() const { return landscape_; }
   const BallParams& params() const { return p_; }
+  // Whether R enters the motion: principal moments given and not all equal
+  // (equal ones, I = theta, make a ball as symmetric as the homogeneous one).
+  bool anisotropic() const { return anisotropic_; }
 
-  // The equations of motion at z = (v, alpha). Always inlined, so that in
+  // The equations of motion at orientation R and z = (v, alpha); R is read
+  // as R(i, j) and only for an anisotropic ball. Always inlined, so that in
   // lie_rhs and flat_rhs the parts they do not return are never stored.
-  template <class T>
-  [[gnu::always_inline]] inline Kinematics<T> kinematics(const T* z) const;
+  template <class T, class Rot>
+  [[gnu::always_inline]] inline Kinematics<T> kinematics(const Rot& R, const T* z) const;
 
-  // Lie-group view: omega(z) and G(z) = (v', alpha') in one pass.
+  // Lie-group view: omega(R, z) and G(R, z) = (v', alpha') in one pass.
   // z and dz hold kZSize numbers; omega 3.
   template <class T>
-  [[gnu::always_inline]] void lie_rhs(const T* z, T* omega, T* dz) const {
-    const Kinematics<T> k = kinematics(z);
-    for (int i = 0; i < 3; ++i) omega[i] = k.omega[i];
-    for (int i = 0; i < 3; ++i) dz[i] = k.v_dot[i];
-    dz[3] = k.alpha_dot[0];
-    dz[4] = k.alpha_dot[1];
+  [[gnu::always_inline]] void lie_rhs(const Mat3& R, const T* z, T* omega, T* dz) const {
+    store_lie(kinematics(R, z), omega, dz);
+  }
+  // The same, also filling the validity margins at (R, z).
+  [[gnu::always_inline]] void lie_rhs(const Mat3& R, const double* z, double* omega, double* dz,
+                                      ModelMargins& margins) const {
+    const Kinematics<double> k = kinematics(R, z);
+    store_lie(k, omega, dz);
+    margins = margins_of(k);
   }
 
   // Flat view: y' = F(y) for y in R^14 (R row-major, v, alpha); R' = hat(omega) R.
   template <class T>
   [[gnu::always_inline]] void flat_rhs(const T* y, T* dy) const {
-    const Kinematics<T> k = kinematics(y + kOffsetV);
+    store_flat(kinematics(RowMajorRotation<T>{y + kOffsetR}, y + kOffsetV), y, dy);
+  }
+  // The same, also filling the validity margins at y.
+  [[gnu::always_inline]] void flat_rhs(const double* y, double* dy, ModelMargins& margins) const {
+    const Kinematics<double> k = kinematics(RowMajorRotation<double>{y + kOffsetR}, y + kOffsetV);
+    store_flat(k, y, dy);
+    margins = margins_of(k);
+  }
+
+  // The margins at a flat state, by one evaluation (for a state no stage
+  // of the method evaluates: the end of a run, a start).
+  ModelMargins margins_at(const FlatState& y) const;
+
+  // T^-1 v: the angular velocity from the angular momentum about the
+  // contact point, at orientation R (used only for an anisotropic ball).
+  Vec3 omega_from_momentum(const Mat3& R, const Vec3& N, const Vec3& v) const;
+  // T omega = R Theta R^T omega + m r^2 (omega - N (N . omega)).
+  Vec3 momentum_from_omega(const Mat3& R, const Vec3& N, const Vec3& omega) const;
+  // T(R, alpha) itself, for tests and derived quantities.
+  Mat3 contact_inertia(const Mat3& R, const Vec3& N) const;
+
+  // The upward unit normal at the contact point (x, y).
+  Vec3 normal_at(double x, double y) const;
+
+  // Every derived quantity of MODEL.md at a flat state.
+  Derived derived(const FlatState& y) const;
+
+ private:
+  template <class T>
+  [[gnu::always_inline]] static void store_lie(const Kinematics<T>& k, T* omega, T* dz) {
+    for (int i = 0; i < 3; ++i) omega[i] = k.omega[i];
+    for (int i = 0; i < 3; ++i) dz[i] = k.v_dot[i];
+    dz[3] = k.alpha_dot[0];
+    dz[4] = k.alpha_dot[1];
+  }
+  template <class T>
+  [[gnu::always_inline]] static void store_flat(const Kinematics<T>& k, const T* y, T* dy) {
     const T* R = y + kOffsetR;
     T* dR = dy + kOffsetR;
     const Eigen::Matrix<T, 3, 1>& w = k.omega;
@@ -92,37 +162,70 @@ class RollingBall {
     dy[kOffsetAlpha] = k.alpha_dot[0];
     dy[kOffsetAlpha + 1] = k.alpha_dot[1];
   }
+  // Inlined into the step's first stage, so that it reads the kinematics
+  // from registers.
+  [[gnu::always_inline]] ModelMargins margins_of(const Kinematics<double>& k) const;
 
-  // T^-1 v = (5/7) / (m r^2) (v + (5/2) N (N . v)): angular velocity from
-  // the angular momentum about the contact point.
-  template <class T>
-  Eigen::Matrix<T, 3, 1> omega_from_momentum(const Eigen::Matrix<T, 3, 1>& N,
-                                             const Eigen::Matrix<T, 3, 1>& v) const {
-    const double s = (5.0 / 7.0) / (p_.mass * p_.radius * p_.radius);
-    return (v + 2.5 * N * N.dot(v)) * s;
-  }
-  // T omega = m r^2 (7/5 omega - N (N . omega)).
-  Vec3 momentum_from_omega(const Vec3& N, const Vec3& omega) const {
-    return p_.mass * p_.radius * p_.radius * (1.4 * omega - N * N.dot(omega));
-  }
+  // omega = T^-1 v for the anisotropic ball by Sherman-Morrison (MODEL.md):
+  // in the body frame, with d = 1 / (Theta + m r^2), n = R^T N, b = R^T v,
+  // omega = R (d b + m r^2 (d n . b) / (1 - m r^2 n . d n) d n).
+  // Kept out of line: the homogeneous path stays as it was.
+  template <class T, class Rot>
+  [[gnu::noinline]] void anisotropic_omega(const Rot& R, const T (&N)[3], const T* v, T (&w)[3]) const;
 
-  // The upward unit normal at the contact point (x, y).
-  Vec3 normal_at(double x, double y) const;
-
-  // Every derived quantity of MODEL.md at a flat state.
-  Derived derived(const FlatState& y) const;
-
- private:
   Landscape landscape_;
   BallParams p_;
+  bool anisotropic_ = false;
+  Vec3 inv_d_ = Vec3::Zero();  // 1 / (I_k + m r^2), anisotropic ball only
+  double theta_ = 0.0;         // the moment of a ball with equal ones
+  double iso_scale_ = 0.0;     // s and c of T^-1 for equal moments (see kinematics)
+  double iso_normal_ = 0.0;
 };
+
+inline ModelMargins RollingBall::margins_of(const Kinematics<double>& k) const {
+  const Jet2<double>& f = k.f;
+  ModelMargins m;
+  const Vec3 N_dot = k.N_d * k.alpha_dot;
+  // F = m c'' - m g with c'' = r (omega' x N + omega x N_dot): the omega'
+  // term is normal to N, so F . N needs no omega'
+  m.normal_force = p_.mass * (p_.gravity * k.N.z() - p_.radius * N_dot.dot(k.omega.cross(k.N)));
+  m.det_E = k.det_E;
+  // principal curvatures: eigenvalues of I^-1 II, first fundamental form
+  // I = [[1 + fx^2, fx fy], [fx fy, 1 + fy^2]], second II = Hess f / w,
+  // w = sqrt(1 + fx^2 + fy^2) = 1 / N_z
+  const double inv_w = k.N.z(), inv_w2 = inv_w * inv_w;
+  const double e = f.fxx * inv_w, fm = f.fxy * inv_w, g = f.fyy * inv_w;
+  const double E1 = 1.0 + f.fx * f.fx, F1 = f.fx * f.fy, G1 = 1.0 + f.fy * f.fy;
+  m.gauss_curvature = (e * g - fm * fm) * inv_w2;
+  m.mean_curvature = 0.5 * (e * G1 - 2.0 * fm * F1 + g * E1) * inv_w2;
+  return m;
+}
+
+template <class T, class Rot>
+void RollingBall::anisotropic_omega(const Rot& R, const T (&N)[3], const T* v, T (&w)[3]) const {
+  const double mr2 = p_.mass * p_.radius * p_.radius;
+  T dn[3], db[3];
+  T ndn = T(0.0), dnb = T(0.0);
+  for (int j = 0; j < 3; ++j) {
+    const T n = R(0, j) * N[0] + R(1, j) * N[1] + R(2, j) * N[2];
+    const T b = R(0, j) * v[0] + R(1, j) * v[1] + R(2, j) * v[2];
+    dn[j] = inv_d_[j] * n;
+    db[j] = inv_d_[j] * b;
+    ndn += n * dn[j];
+    dnb += dn[j] * b;
+  }
+  const T coef = mr2 * dnb / (1.0 - mr2 * ndn);
+  T wb[3];
+  for (int j = 0; j < 3; ++j) wb[j] = db[j] + coef * dn[j];
+  for (int i = 0; i < 3; ++i) w[i] = R(i, 0) * wb[0] + R(i, 1) * wb[1] + R(i, 2) * wb[2];
+}
 
 // Written out in scalars rather than with Eigen's 3-vectors: this is the hot
 // path of every integrator, and scalar code lets the compiler keep the whole
 // state in registers (Eigen's fixed-size temporaries cost about a third more
 // per evaluation here).
-template <class T>
-Kinematics<T> RollingBall::kinematics(const T* z) const {
+template <class T, class Rot>
+Kinematics<T> RollingBall::kinematics(const Rot& R, const T* z) const {
   using std::sqrt;
   Kinematics<T> k;
   const double r = p_.radius, m = p_.mass;
@@ -145,10 +248,18 @@ Kinematics<T> RollingBall::kinematics(const T* z) const {
   const T E11 = Cy0 * Cy0 + Cy1 * Cy1 + Cy2 * Cy2;
   const T det_E = E00 * E11 - E01 * E01;
 
-  // omega = T^-1 v = (5/7) / (m r^2) (v + (5/2) N (N . v))
-  const double s = (5.0 / 7.0) / (m * r * r);
-  const T Nv = 2.5 * (N0 * z[0] + N1 * z[1] + N2 * z[2]);
-  const T w0 = (z[0] + N0 * Nv) * s, w1 = (z[1] + N1 * Nv) * s, w2 = (z[2] + N2 * Nv) * s;
+  // omega = T^-1 v; for equal moments theta: (v + c N (N . v)) s with
+  // s = 1 / (theta + m r^2), c = m r^2 / theta (homogeneous: s = (5/7) / (m r^2), c = 5/2)
+  T w0, w1, w2;
+  if (anisotropic_) [[unlikely]] {
+    T w[3];
+    anisotropic_omega(R, {N0, N1, N2}, z, w);
+    w0 = w[0], w1 = w[1], w2 = w[2];
+  } else {
+    const double s = iso_scale_;
+    const T Nv = iso_normal_ * (N0 * z[0] + N1 * z[1] + N2 * z[2]);
+    w0 = (z[0] + N0 * Nv) * s, w1 = (z[1] + N1 * Nv) * s, w2 = (z[2] + N2 * Nv) * s;
+  }
 
   // alpha' = r E^-1 C'^T (omega x N), with the 2x2 inverse written out
   const T q0 = w1 * N2 - w2 * N1, q1 = w2 * N0 - w0 * N2, q2 = w0 * N1 - w1 * N0;

@@ -184,6 +184,33 @@ void check_param_name(const std::string& name) {
   }
 }
 
+// Principal moments a rigid ball can have: positive, the triangle
+// inequality, and I1 + I2 + I3 <= 2 m r^2 (the trace of the inertia is
+// 2 sum m_i |x_i|^2, and |x_i| <= r); equality up to rounding is allowed.
+Vec3 read_inertia(const json& v, const SceneBall& ball) {
+  const char* key = "ball.inertia";
+  const Vec3 I = vector_at<3>(v, key);
+  const double slack = 1e-12 * I.cwiseAbs().sum();
+  for (int k = 0; k < 3; ++k)
+    if (!(I[k] > 0.0))
+      throw InputError("each principal moment [I1, I2, I3] must be > 0, not I" + std::to_string(k + 1) + " = " +
+                           num(I[k]),
+                       key);
+  for (int k = 0; k < 3; ++k) {
+    const double others = I.sum() - I[k];
+    if (I[k] > others + slack)
+      throw InputError("the moments must obey the triangle inequality, but I" + std::to_string(k + 1) + " = " +
+                           num(I[k]) + " > the other two's sum " + num(others),
+                       key);
+  }
+  const double bound = 2.0 * ball.mass * ball.radius * ball.radius;
+  if (I.sum() > bound + slack)
+    throw InputError("the moments do not fit a ball of this mass and radius: I1 + I2 + I3 = " + num(I.sum()) +
+                         " > 2 m r^2 = " + num(bound),
+                     key);
+  return I;
+}
+
 SceneStart read_start(const json& v) {
   object_at(v, "start");
   reject_unknown_keys(v, "start", {"contact", "omega", "velocity", "spin", "orientation"});
@@ -192,11 +219,18 @@ SceneStart read_start(const json& v) {
   const json* omega = optional_key(v, "omega");
   const json* velocity = optional_key(v, "velocity");
   const json* spin = optional_key(v, "spin");
+  if (velocity && !(velocity->is_array() && (velocity->size() == 2 || velocity->size() == 3)))
+    throw InputError(std::string("must be an array of 3 numbers (u_x, u_y, u_z) or 2 (u_x, u_y), not ") +
+                         (velocity->is_array() ? std::to_string(velocity->size()) + " numbers" : velocity->type_name()),
+                     "start.velocity");
   if (omega && velocity) throw InputError("give either omega or velocity (with spin), not both", "start");
   if (!omega && !velocity) throw InputError("missing omega or velocity (with spin): give one of them", "start");
   if (spin && !velocity) throw InputError("spin goes with velocity; with omega the spin is part of it", "start.spin");
   if (omega) s.omega = vector_at<3>(*omega, "start.omega");
-  if (velocity) s.velocity = vector_at<3>(*velocity, "start.velocity");
+  if (velocity && velocity->is_array() && velocity->size() == 2)
+    s.horizontal_velocity = vector_at<2>(*velocity, "start.velocity");
+  else if (velocity)
+    s.velocity = vector_at<3>(*velocity, "start.velocity");
   if (spin) s.spin = number_at(*spin, "start.spin");
   if (const json* q = optional_key(v, "orientation")) {
     s.orientation = vector_at<4>(*q, "start.orientation");
@@ -234,11 +268,12 @@ Scene read_scene(const json& root, const std::string& source) {
     s.has_domain = true;
   }
   const json& ball = object_at(required_key(root, "", "ball"), "ball");
-  reject_unknown_keys(ball, "ball", {"radius", "mass"});
+  reject_unknown_keys(ball, "ball", {"radius", "mass", "inertia"});
   s.ball.radius = number_at(required_key(ball, "ball", "radius"), "ball.radius");
   s.ball.mass = number_at(required_key(ball, "ball", "mass"), "ball.mass");
   if (!(s.ball.radius > 0.0)) throw InputError("the radius must be > 0", "ball.radius");
   if (!(s.ball.mass > 0.0)) throw InputError("the mass must be > 0", "ball.mass");
+  if (const json* inertia = optional_key(ball, "inertia")) s.ball.inertia = read_inertia(*inertia, s.ball);
   if (const json* g = optional_key(root, "gravity")) s.gravity = number_at(*g, "gravity");
   if (!(s.gravity >= 0.0)) throw InputError("gravity g0 must be >= 0 (it points down, (0, 0, -g0))", "gravity");
   s.start = read_start(required_key(root, "", "start"));
@@ -264,23 +299,27 @@ void check_start(const Scene& s, const RollingBall& model) {
     const Vec3& u = *s.start.velocity;
     if (std::abs(u.dot(N)) > 1e-9 * u.norm())
       throw InputError("the centre's velocity has a normal component u0 . N = " + num(u.dot(N)) +
-                           "; only its tangential part can be realised",
+                           "; only its tangential part can be realised (or give [u_x, u_y] and the slope fixes u_z)",
                        "start.velocity");
   }
   const FlatState y0 = start_state(s, model);
   if (!y0.allFinite()) throw InputError("the start state is not finite (ball or start values too large)", "start");
   // T and T^-1 must survive double range (r = 1e-200 makes m r^2 vanish)
   const Vec3 omega0 = start_omega(s, model);
-  const Vec3 omega_back = model.omega_from_momentum(N, Vec3(momentum_of(y0)));
+  const Vec3 omega_back = model.omega_from_momentum(rotation_of(y0), N, Vec3(momentum_of(y0)));
   if (!omega_back.allFinite() || (omega_back - omega0).norm() > 1e-9 * (1.0 + omega0.norm()))
     throw InputError("the ball's radius and mass are too extreme for its inertia to be represented in doubles",
                      "ball");
-  const Derived d = model.derived(y0);
-  const double r = s.ball.radius;
-  if (!(r * d.kappa1 < 1.0) || !(d.det_E > 1e-12))
-    throw InputError("the contact is not regular: r * max curvature = " + num(r * d.kappa1) +
+  const ModelMargins m = model.margins_at(y0);
+  const double r_kappa = m.r_kappa_max(s.ball.radius);
+  if (!(r_kappa < 1.0) || !(m.det_E > 1e-12))
+    throw InputError("the contact is not regular: r * max curvature = " + num(r_kappa) +
                          " (must be < 1: the ball does not fit the landscape there)",
                      "start.contact");
+  if (!(m.normal_force > 0.0))
+    throw InputError("the ball leaves the surface at once: the normal force F . N = " + num(m.normal_force) +
+                         " at the start is not > 0 (too fast over a crest, or no gravity)",
+                     "start");
 }
 
 }  // namespace
@@ -288,17 +327,25 @@ void check_start(const Scene& s, const RollingBall& model) {
 RollingBall make_model(const Scene& scene) {
   try {
     return RollingBall(Landscape::parse(scene.landscape, scene.params),
-                       BallParams{scene.ball.radius, scene.ball.mass, scene.gravity});
+                       BallParams{scene.ball.radius, scene.ball.mass, scene.gravity, scene.ball.inertia});
   } catch (const InputError& e) {
     throw e.under("landscape");
   }
+}
+
+Vec3 start_velocity(const Scene& scene, const RollingBall& model) {
+  if (scene.start.velocity) return *scene.start.velocity;
+  const Vec2 a = scene.start.contact;
+  const Vec2 u = scene.start.horizontal_velocity.value();
+  const Jet2<double> f = model.landscape().at(a.x(), a.y());
+  return Vec3(u.x(), u.y(), f.fx * u.x() + f.fy * u.y());
 }
 
 Vec3 start_omega(const Scene& scene, const RollingBall& model) {
   if (scene.start.omega) return *scene.start.omega;
   const Vec2 a = scene.start.contact;
   const Vec3 N = model.normal_at(a.x(), a.y());
-  return N.cross(*scene.start.velocity) / scene.ball.radius + scene.start.spin * N;
+  return N.cross(start_velocity(scene, model)) / scene.ball.radius + scene.start.spin * N;
 }
 
 Mat3 start_rotation(const Scene& scene) {
@@ -309,7 +356,8 @@ Mat3 start_rotation(const Scene& scene) {
 FlatState start_state(const Scene& scene, const RollingBall& model) {
   const Vec2 a = scene.start.contact;
   const Vec3 N = model.normal_at(a.x(), a.y());
-  return make_flat(start_rotation(scene), model.momentum_from_omega(N, start_omega(scene, model)), a);
+  const Mat3 R0 = start_rotation(scene);
+  return make_flat(R0, model.momentum_from_omega(R0, N, start_omega(scene, model)), a);
 }
 
 Scene parse_scene(std::string_view json_text, const std::string& source) {

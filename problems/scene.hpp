@@ -18,6 +18,8 @@ namespace rb {
 struct SceneBall {
   double radius = 0.0;  // r > 0
   double mass = 0.0;    // m > 0
+  // principal moments [I1, I2, I3] about the body axes; absent: homogeneous
+  std::optional<Vec3> inertia;
 };
 
 // The start of a scene. Exactly one of omega and velocity is set.
@@ -25,6 +27,9 @@ struct SceneStart {
   Vec2 contact = Vec2::Zero();    // alpha0 = (x, y) of the contact point
   std::optional<Vec3> omega;      // angular velocity, world frame
   std::optional<Vec3> velocity;   // the centre's velocity u0 (tangential), world frame
+  // given as [u_x, u_y]: velocity is then empty until the landscape's slope
+  // lifts it onto the tangent plane (start_velocity)
+  std::optional<Vec2> horizontal_velocity;
   double spin = 0.0;              // s0 = omega . N, with velocity only
   // The orientation R0 as a unit quaternion (w, x, y, z), normalised on load.
   Eigen::Vector4d orientation = Eigen::Vector4d(1.0, 0.0, 0.0, 0.0);
@@ -62,6 +67,10 @@ Scene load_scene(const std::string& name_or_path);
 
 // The model of a scene: its landscape with the params, the ball and gravity.
 RollingBall make_model(const Scene& scene);
+
+// The centre's start velocity u0: as given, or [u_x, u_y] lifted onto the
+// tangent plane, u0 = (u_x, u_y, f_x u_x + f_y u_y). Only for a velocity start.
+Vec3 start_velocity(const Scene& scene, const RollingBall& model);
 
 // The start in world frame: omega0 (given, or (N x u0) / r + s0 N), R0 from
 // the quaternion, and the flat state y0 = (R0, v0 = T omega0, alpha0).

@@ -163,7 +163,7 @@ Reference make_reference(const Problem& problem, const std::string& scene_conten
       const ExactState e = exact->at(times[i]);
       FlatState y = make_flat(e.has_rotation ? e.R : ref.points[i].R, Vec3::Zero(), e.alpha);
       const Vec3 N = problem.model().normal_at(e.alpha.x(), e.alpha.y());
-      y.segment<3>(kOffsetV) = problem.model().momentum_from_omega(N, e.omega);
+      y.segment<3>(kOffsetV) = problem.model().momentum_from_omega(e.R, N, e.omega);
       const ReferencePoint p = reference_point_of(problem, y);
       disagreement = std::max(disagreement, point_distance(p, ref.points[i]));
       ref.points[i] = p;

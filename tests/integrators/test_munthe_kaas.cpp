@@ -69,7 +69,7 @@ TEST(MuntheKaas, ExpEulerIsLieEuler) {
   Vec3 omega;
   ZState G;
   const ZState z0 = z_of(p.y0());
-  p.lie_rhs(z0.data(), omega.data(), G.data());
+  p.lie_rhs(rotation_of(p.y0()), z0.data(), omega.data(), G.data());
   RunOptions o;
   o.t_end = h;
   o.h = h;

@@ -37,7 +37,7 @@ Vec3 omega_of(const Problem& p, const FlatState& y) { return p.model().derived(y
 // The flat state of an exact solution (v = T omega at the exact contact).
 FlatState flat_of(const Problem& p, const ExactState& e) {
   const Vec3 N = p.model().normal_at(e.alpha.x(), e.alpha.y());
-  return make_flat(e.R, p.model().momentum_from_omega(N, e.omega), e.alpha);
+  return make_flat(e.R, p.model().momentum_from_omega(e.R, N, e.omega), e.alpha);
 }
 
 TEST(ClosedForm, PlaneIsAStraightLineWithRotationExpOfOmega) {

@@ -1,5 +1,6 @@
 // The exact Jacobian of the flat view (forward-mode AD through flat_rhs)
-// against central finite differences, at random states of three scenes.
+// against central finite differences, at random states of four scenes (one
+// with an anisotropic ball, where R's nine entries enter F).
 #include <gtest/gtest.h>
 
 #include <random>
@@ -80,7 +81,7 @@ TEST_P(JacobianOnScene, ValueIsTheRightHandSide) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Jacobian, JacobianOnScene,
-                         ::testing::Values("valley-sideways", "gaussian-hills", "bowl-3d"),
+                         ::testing::Values("valley-sideways", "gaussian-hills", "bowl-3d", "chaplygin-valley"),
                          [](const ::testing::TestParamInfo<std::string>& info) {
                            std::string name = info.param;
                            for (char& ch : name)
@@ -97,7 +98,7 @@ TEST(Jacobian, RotationBlockIsHatOmegaAndRNeverEntersZ) {
   FlatJacobian J;
   flat_jacobian(problem, y, J);
   const RollingBall& m = problem.model();
-  const Vec3 omega = m.omega_from_momentum(m.normal_at(y[kOffsetAlpha], y[kOffsetAlpha + 1]), Vec3(momentum_of(y)));
+  const Vec3 omega = m.omega_from_momentum(rotation_of(y), m.normal_at(y[kOffsetAlpha], y[kOffsetAlpha + 1]), Vec3(momentum_of(y)));
   const Mat3 W = hat(omega);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)

@@ -46,9 +46,9 @@ void expect_key(const json& scene, const std::string& key, int column = 0) {
 }
 
 TEST(SceneShipped, EveryShippedSceneLoadsAndStartsValid) {
-  const std::vector<std::string> expected = {"bowl-3d",        "bowl-planar", "bumpy-long",
-                                             "gaussian-hills", "incline-spin", "plane",
-                                             "saddle",         "valley-rest", "valley-sideways"};
+  const std::vector<std::string> expected = {
+      "bowl-3d",        "bowl-planar",  "bumpy-long", "chaplygin-bumpy-long", "chaplygin-plane", "chaplygin-valley",
+      "gaussian-hills", "incline-spin", "plane",      "saddle",               "valley-rest",     "valley-sideways"};
   const std::vector<std::string> names = shipped_scene_names();
   EXPECT_EQ(names, expected);
   for (const std::string& name : names) {
@@ -189,7 +189,9 @@ TEST(SceneErrors, WrongArrayLengths) {
   s["start"]["contact"] = {0.0};
   expect_key(s, "start.contact");
   s = base_scene();
-  s["start"]["velocity"] = {0.5, 0.0};
+  s["start"]["velocity"] = {0.5};  // 2 numbers are the horizontal part, 3 the whole
+  expect_key(s, "start.velocity");
+  s["start"]["velocity"] = {0.5, 0.0, 0.0, 0.0};
   expect_key(s, "start.velocity");
   s = base_scene();
   s["domain"] = {-1, 1, -1};
@@ -314,6 +316,25 @@ TEST(SceneErrors, UnknownExactNameListsTheKnownOnes) {
   for (const std::string& name : exact_names()) EXPECT_NE(e.message().find(name), std::string::npos) << e.what();
 }
 
+TEST(SceneErrors, InertiaIsChecked) {
+  json s = base_scene();
+  s["ball"]["inertia"] = {0.003, 0.004, 0.005};
+  EXPECT_NO_THROW(parse_scene(s.dump()));
+  s["ball"]["inertia"] = {0.002, 0.004, 0.006};  // triangle and fit at equality: allowed
+  EXPECT_NO_THROW(parse_scene(s.dump()));
+  s["ball"]["inertia"] = {0.02 / 3, 0.02 / 3, 0.02 / 3};  // a thin shell: sum = 2 m r^2
+  EXPECT_NO_THROW(parse_scene(s.dump()));
+  for (const json& bad : {json{0.003, 0.004}, json(0.004), json{0.0, 0.004, 0.004}, json{0.004, -1e-3, 0.004},
+                          json{0.001, 0.002, 0.0031}, json{0.0067, 0.0067, 0.0067}}) {
+    s["ball"]["inertia"] = bad;
+    expect_key(s, "ball.inertia");
+  }
+  // a closed form of the homogeneous ball does not hold for another
+  s["ball"]["inertia"] = {0.003, 0.004, 0.005};
+  s["exact"] = "bowl-pendulum";
+  expect_key(s, "exact");
+}
+
 TEST(SceneErrors, ExactSolutionMustMatchTheScene) {
   json s = base_scene();
   s["exact"] = "plane";  // the landscape is not flat
@@ -368,7 +389,7 @@ TEST(SceneStart, VelocityAndSpinBecomeOmega) {
   EXPECT_LT((0.1 * omega0.cross(N) - Vec3(0.3, 0.5, -0.05)).norm(), 1e-14);
   // the flat state carries v0 = T omega0, and the model gives omega0 back
   const FlatState& y0 = problem.y0();
-  EXPECT_LT((model.omega_from_momentum(N, Vec3(momentum_of(y0))) - omega0).norm(), 1e-14);
+  EXPECT_LT((model.omega_from_momentum(rotation_of(y0), N, Vec3(momentum_of(y0))) - omega0).norm(), 1e-14);
   EXPECT_LT((model.derived(y0).centre_velocity - Vec3(0.3, 0.5, -0.05)).norm(), 1e-14);
   EXPECT_NEAR(model.derived(y0).spin, 0.7, 1e-14);
   EXPECT_EQ(contact_of(y0), Vec2(0.0, 0.0));
@@ -385,7 +406,7 @@ TEST(SceneStart, OmegaIsTakenAsGivenAndTheQuaternionBecomesR0) {
   const Scene scene = parse_scene(s.dump());
   const Problem problem = make_problem(scene);
   const Vec3 N = problem.model().normal_at(0.0, 0.0);
-  EXPECT_LT((problem.model().omega_from_momentum(N, Vec3(momentum_of(problem.y0()))) - Vec3(1, -2, 3)).norm(),
+  EXPECT_LT((problem.model().omega_from_momentum(rotation_of(problem.y0()), N, Vec3(momentum_of(problem.y0()))) - Vec3(1, -2, 3)).norm(),
             1e-13);
   const Mat3 R0 = rotation_of(problem.y0());
   EXPECT_LT((R0 - so3_exp(Vec3(1, 2, 2) / 3.0)).norm(), 1e-15);

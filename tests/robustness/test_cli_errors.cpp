@@ -71,6 +71,8 @@ TEST(CliErrors, RunsThatStopEarlyExitThreeWithTheReason) {
        ": domain: the contact point ("},
       {"trajectory " RB_TEST_DATA "/stop-curvature.json --integrator rk4 --h 0.01 --out OUT", 3,
        ": curvature: r * max curvature reached "},
+      {"trajectory " RB_TEST_DATA "/stop-steep-bowl.json --integrator rk4 --h 0.001 --dt-out 1 --out OUT", 3,
+       ": curvature: r * max curvature reached "},
       {"trajectory " RB_TEST_DATA "/stop-nonfinite.json --integrator euler --h 0.01 --out OUT", 3,
        ": diverged: the landscape or its derivatives are not finite at the contact point\n"},
       {"trajectory plane --integrator gsl-rkf45-adaptive --rtol 1e-300 --atol 1e-300 --out OUT", 3,
@@ -79,6 +81,29 @@ TEST(CliErrors, RunsThatStopEarlyExitThreeWithTheReason) {
        "rollbench: run stopped early at t = 0: max-steps: the step count overflows\n"},
   };
   for (const CliCase& c : cases) expect_cli(c);
+}
+
+// Every class of bad ball.inertia: exit 2 and the key, with the exact text.
+TEST(CliErrors, BadInertiaNamesTheKey) {
+  const std::string ball = R"("ball": {"radius": 0.1, "mass": 1.0})";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"[0.004, 0.004]", "'ball.inertia': must be an array of 3 numbers, not 2"},
+      {"0.004", "'ball.inertia': must be an array of 3 numbers, not number"},
+      {R"([0.004, "a", 0.004])", "'ball.inertia': must be an array of 3 numbers; element 1 is a string"},
+      {"[0.004, 0, 0.004]", "'ball.inertia': each principal moment [I1, I2, I3] must be > 0, not I2 = 0"},
+      {"[-0.001, 0.004, 0.004]", "'ball.inertia': each principal moment [I1, I2, I3] must be > 0, not I1 = -0.001"},
+      {"[0.001, 0.002, 0.004]",
+       "'ball.inertia': the moments must obey the triangle inequality, but I3 = 0.004 > the other two's sum 0.003"},
+      {"[0.008, 0.008, 0.008]",
+       "'ball.inertia': the moments do not fit a ball of this mass and radius: I1 + I2 + I3 = 0.024 > 2 m r^2 = "
+       "0.02"},
+  };
+  for (const auto& [inertia, err] : cases) {
+    const std::filesystem::path file = temp_path("inertia.json");
+    std::ofstream(file) << replaced(base_scene_text(), ball,
+                                    R"("ball": {"radius": 0.1, "mass": 1.0, "inertia": )" + inertia + "}");
+    expect_cli({"trajectory " + file.string() + " --integrator rk4 --h 0.1 --out OUT", 2, "rollbench: " + err + "\n"});
+  }
 }
 
 // Options out of range must be refused, not replaced by a default
