@@ -89,8 +89,9 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   const std::size_t min_points = static_cast<std::size_t>(kMinOrderPoints);
   std::size_t lo = 0;
   while (p.size() - lo > min_points && local_slope(p, lo) < 0.5 * least_squares(p, lo + 1, p.size()).slope) ++lo;
-  std::size_t hi = std::min(p.size(), lo + min_points);
-  max_points = std::max(max_points, min_points);
+  // a caller may ask for fewer points than a verdict needs (a slope alone)
+  max_points = std::max<std::size_t>(2, max_points);
+  std::size_t hi = std::min(p.size(), lo + std::min(min_points, max_points));
   while (hi < p.size() && hi - lo < max_points) {
     const double slope = least_squares(p, lo, hi).slope;
     if (std::abs(local_slope(p, hi - 1) - slope) > std::max(0.15, 0.05 * std::abs(slope))) break;

@@ -45,7 +45,8 @@ inline constexpr int kMinOrderPoints = 4;
 // rest (a rounding plateau), the window takes the kMinOrderPoints smallest
 // steps left, and a larger step joins it only while the local slope up to
 // it stays within max(0.15, 0.05 p) of the window's slope p, up to
-// max_points. So pre-asymptotic large steps, whose slope drifts, stay out.
+// max_points (below kMinOrderPoints: that many, a slope without a verdict).
+// So pre-asymptotic large steps, whose slope drifts, stay out.
 OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& error, double floor = 0.0,
                    double ceiling = 0.1, std::size_t max_points = 6);
 

@@ -269,8 +269,8 @@ RunRecord run_task(const SweepScene& s, const SweepTask& task, long max_steps) {
     r.error_max_source = {on_grid.cost.steps == run.cost.steps && on_grid.cost.rejected == run.cost.rejected,
                           on_grid.cost.steps};
     // the drivers check lift-off and curvature at outputs only: a failure
-    // the grid run meets between the timed run's outputs stands for the run
-    if (run.status == Status::ok && on_grid.status != Status::ok) {
+    // the grid run meets before the timed run's end or stop stands for the run
+    if (on_grid.status != Status::ok && (run.status == Status::ok || on_grid.stop_time < run.stop_time)) {
       r.status = on_grid.status;
       r.message = on_grid.message + " (met by the untimed run on the error grid)";
       r.stop_time = on_grid.stop_time;
