@@ -134,7 +134,7 @@ int run_sweep_command(const RunArgs& a) {
   }
   auto progress = [](const std::string& line) { std::fprintf(stderr, "rollbench: %s\n", line.c_str()); };
   progress("preparing scenes and references");
-  const std::vector<rb::SweepScene> scenes = rb::prepare_scenes(spec);
+  const std::vector<rb::SweepScene> scenes = rb::prepare_scenes(spec, true, progress);
   for (const rb::SweepScene& s : scenes)
   {
     char error[32];

@@ -176,10 +176,17 @@ std::string progress_line(const std::string& phase, std::size_t done, std::size_
   return s.str();
 }
 
-std::vector<SweepScene> prepare_scenes(const SweepSpec& spec, bool with_references) {
+std::vector<SweepScene> prepare_scenes(const SweepSpec& spec, bool with_references,
+                                       const std::function<void(const std::string&)>& progress) {
   std::vector<std::string> names = spec.scenes.empty() ? shipped_scene_names() : spec.scenes;
   std::vector<SweepScene> out;
+  const auto start = std::chrono::steady_clock::now();
   for (const std::string& name : names) {
+    if (progress && with_references)
+      progress(progress_line("references", out.size(), names.size(),
+                             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                             "scenes") +
+               " (next: " + name + ")");
     Scene scene = load_scene(name);
     if (spec.t_end > 0.0) scene.t_end = std::min(scene.t_end, spec.t_end);
     Problem problem = make_problem(scene);

@@ -69,8 +69,10 @@ struct RunRecord {
 };
 
 // Loads the scenes of a spec (applying its t_end) and, unless told not to,
-// their references (without: kind "none", no points).
-std::vector<SweepScene> prepare_scenes(const SweepSpec& spec, bool with_references = true);
+// their references (without: kind "none", no points); progress, when given,
+// gets a line with an estimate before each scene's reference.
+std::vector<SweepScene> prepare_scenes(const SweepSpec& spec, bool with_references = true,
+                                       const std::function<void(const std::string&)>& progress = {});
 
 // "phase: 3/10 runs, 1.2 s elapsed, about 2.8 s left": progress with an
 // estimate from the time per item so far.
