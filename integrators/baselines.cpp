@@ -28,8 +28,11 @@ Mat3 rotation_of_quaternion(const Eigen::Vector4d& q) {
 }  // namespace
 
 std::string Rk4Projected::description() const {
-  return "classical RK4 on the flat view with R projected onto SO(3) after every step (polar decomposition "
-         "by a 3x3 SVD): 4 rhs and one SVD a step";
+  return projection_ == Projection::svd
+             ? "classical RK4 on the flat view with R projected onto SO(3) after every step (polar factor by a "
+               "3x3 SVD): 4 rhs and one SVD a step"
+             : "classical RK4 on the flat view with R projected onto SO(3) after every step (polar factor by a "
+               "Newton-Schulz step): 4 rhs and two 3x3 products a step";
 }
 
 RunResult Rk4Projected::integrate(const Problem& problem, const RunOptions& options) const {
@@ -38,7 +41,9 @@ RunResult Rk4Projected::integrate(const Problem& problem, const RunOptions& opti
     rk4_step(y, h, f);
     cost.rhs_evals += 4;
     // a non-finite R has no closest rotation; the driver reports it diverged
-    if (y.allFinite()) set_rotation(y, project_to_so3(rotation_of(y)));
+    if (!y.allFinite()) return;
+    const Mat3 R = rotation_of(y);
+    set_rotation(y, projection_ == Projection::svd ? project_to_so3(R) : project_to_so3_newton_schulz(R));
   };
   return drive_fixed_step(problem, options, step);
 }

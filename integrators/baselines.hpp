@@ -4,8 +4,11 @@
 // step. Both are RK4 (4 rhs evaluations a step), fixed-step, order 4.
 //
 // - rk4-projected (family "projection"): RK4 on the flat view y in R^14, then
-//   R <- the closest rotation to R (polar decomposition by a 3x3 SVD,
-//   rb::project_to_so3). A step: 4 flat rhs evaluations and one SVD.
+//   R <- the closest rotation to R (its polar factor, by Newton-Schulz steps,
+//   rb::project_to_so3_newton_schulz: one step of two 3x3 products after a
+//   step of RK4). A step: 4 flat rhs evaluations and one projection.
+//   rk4-projected-svd: the same with the polar factor from a 3x3 SVD
+//   (rb::project_to_so3), the same rotation at many times the cost.
 // - rk4-quaternion (family "quaternion"): RK4 on (q, z) in R^4 x R^5 with
 //   q' = 1/2 (0, omega) (x) q (omega from Problem::lie_rhs, world frame, so
 //   R(q) is body to world), then q <- q / |q|. A step: 4 Lie-view rhs
@@ -15,13 +18,21 @@
 
 namespace rb {
 
+enum class Projection { newton_schulz, svd };
+
 class Rk4Projected final : public Integrator {
  public:
-  std::string name() const override { return "rk4-projected"; }
+  explicit Rk4Projected(Projection projection = Projection::newton_schulz) : projection_(projection) {}
+  std::string name() const override {
+    return projection_ == Projection::svd ? "rk4-projected-svd" : "rk4-projected";
+  }
   std::string family() const override { return "projection"; }
   int declared_order() const override { return 4; }
   std::string description() const override;
   RunResult integrate(const Problem& problem, const RunOptions& options) const override;
+
+ private:
+  Projection projection_;
 };
 
 class Rk4Quaternion final : public Integrator {

@@ -47,6 +47,7 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   add(std::make_unique<MuntheKaasAdaptive>(pairs::dormand_prince853(), "rkmk-dp853-adaptive"));
   add(std::make_unique<MuntheKaasAdaptive>(pairs::fehlberg78(), "rkmk-f78-adaptive"));
   add(std::make_unique<Rk4Projected>());
+  add(std::make_unique<Rk4Projected>(Projection::svd));
   add(std::make_unique<Rk4Quaternion>());
   // --- end lie-group adaptive and baselines ---
 

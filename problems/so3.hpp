@@ -3,6 +3,7 @@
 // Rodrigues' formula, log, and the inverse of the exponential's derivative
 // (dexpinv) used by Runge-Kutta-Munthe-Kaas methods (MODEL.md, family 3).
 #include <cmath>
+#include <limits>
 
 #include "problems/state.hpp"
 
@@ -54,6 +55,25 @@ inline double rotation_defect(const Mat3& R) {
   return (R.transpose() * R - Mat3::Identity()).norm();
 }
 
+// The closest rotation to M, as project_to_so3, for M near SO(3) (a step's
+// R): Newton-Schulz (Bjorck-Bowie) steps X <- X (I - E / 2), E = X^T X - I,
+// which square the defect, so one step suffices once max |E_ij| < 1e-8
+// (the defect left is then below rounding). M far from SO(3) (max |E_ij|
+// >= 1/2, where the iteration may not converge) or with det M < 0 (whose
+// polar factor is no rotation) goes to the SVD.
+inline Mat3 project_to_so3_newton_schulz(const Mat3& M) {
+  if (!(M.determinant() > 0.0)) return project_to_so3(M);
+  Mat3 X = M;
+  for (int i = 0; i < 8; ++i) {
+    const Mat3 E = X.transpose() * X - Mat3::Identity();
+    const double defect = E.cwiseAbs().maxCoeff();
+    if (!(defect < 0.5)) return project_to_so3(M);
+    X -= 0.5 * (X * E);
+    if (defect < 1e-8) break;
+  }
+  return X;
+}
+
 // Which formula dexpinv uses.
 enum class DexpinvKind {
   exact,      // closed form for so(3)
@@ -61,8 +81,17 @@ enum class DexpinvKind {
   seminar,    // the seminar's sign error: w - u x w / 2 - u x (u x w) / 12
 };
 
+// The largest |u| the closed-form dexpinv takes: its coefficient grows
+// without bound towards the pole at |u| = 2 pi (where exp is not locally
+// invertible), and is 0.46 here; a step that turns the ball this far
+// (15/16 of a turn) has no accuracy left.
+inline constexpr double kDexpinvMaxAngle = 2.0 * M_PI * (15.0 / 16.0);
+
 // dexpinv_u(w) = w - 1/2 u x w + (1/t^2)(1 - (t/2) cot(t/2)) u x (u x w),
-// t = |u|; near t = 0 the coefficient is 1/12 + t^2/720 + t^4/30240.
+// t = |u|; near t = 0 the coefficient is 1/12 + t^2/720 + t^4/30240. For
+// |u| >= kDexpinvMaxAngle the exact form is NaN, never a wrong number: a
+// fixed-step run ends "diverged" at the last valid state, an adaptive
+// step is rejected and shrunk.
 inline Vec3 dexpinv(const Vec3& u, const Vec3& w, DexpinvKind kind = DexpinvKind::exact) {
   const Vec3 uw = u.cross(w);
   const Vec3 uuw = u.cross(uw);
@@ -75,6 +104,8 @@ inline Vec3 dexpinv(const Vec3& u, const Vec3& w, DexpinvKind kind = DexpinvKind
       const double t2 = u.squaredNorm();
       if (t2 < 1e-4) {
         c = 1.0 / 12.0 + t2 / 720.0 + t2 * t2 / 30240.0;
+      } else if (!(t2 < kDexpinvMaxAngle * kDexpinvMaxAngle)) {
+        return Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
       } else {
         const double t = std::sqrt(t2);
         c = (1.0 - 0.5 * t / std::tan(0.5 * t)) / t2;

@@ -1,5 +1,5 @@
 #pragma once
-// The JSON report of FORMATS.md ("rollbench.report/1"): provenance, the runs,
+// The JSON report of FORMATS.md ("rollbench.report/2"): provenance, the runs,
 // the observed orders, the references and the stability study; and merging
 // the reports of shards back into one.
 #include <nlohmann/json.hpp>
@@ -11,22 +11,28 @@
 
 namespace rb {
 
-inline constexpr const char* kReportSchema = "rollbench.report/1";
+inline constexpr const char* kReportSchema = "rollbench.report/2";
 
 // The report of a sweep. Orders are fitted here, from the fixed-step runs.
 nlohmann::json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes,
                            const std::vector<RunRecord>& runs, const StabilityResults& stability);
 
 // The "orders" entries for the runs of a report: per (scene, integrator) of a
-// fixed-step method, the slope of log error on log h per component, a
-// verdict per component ("as declared" within 0.2, "higher", "lower") and
-// pass = no fitted component is lower than declared - 0.2 (null: no fit).
+// fixed-step method, the slope of log error on log h per component with its
+// 95 % interval, a verdict per component (order_verdict: "as declared",
+// "lower", "inconclusive") and pass: false when a component is lower, true
+// when every one is as declared, null otherwise.
 nlohmann::json fit_orders(const nlohmann::json& runs, const nlohmann::json& references);
 
+// The "tolerance_fits" entries: per (scene, integrator) of an adaptive
+// method, the least-squares line of log10 worst error (at t_end) against
+// log10 tolerance over its runs that reached t_end.
+nlohmann::json fit_tolerances(const nlohmann::json& runs);
+
 // Joins shard reports: runs, references and stability records in sweep
-// order, orders refitted. Throws InputError for reports of another schema or
-// of different sweeps, and unless every shard 0..n-1 is there once (the
-// message names the missing ones).
+// order, orders and tolerance fits refitted. Throws InputError for reports
+// of another schema or of different sweeps, and unless every shard 0..n-1 is
+// there once (the message names the missing ones).
 nlohmann::json merge_reports(const std::vector<nlohmann::json>& shards);
 
 // Reads a report and checks its schema string; throws InputError naming the

@@ -58,31 +58,36 @@ DriftRecord drift_run(const Problem& problem, const Integrator& m, const Stabili
   return d;
 }
 
+// The scene's energy scale: m g0 r plus the kinetic energy it starts with,
+// so that a spinning start on flat ground is not judged on m g0 r alone.
+double energy_scale_of(const Problem& problem) {
+  const BallParams& b = problem.model().params();
+  const Derived d = problem.model().derived(problem.y0());
+  const double potential = b.mass * b.gravity * d.centre.z();
+  return b.mass * b.gravity * b.radius + std::max(0.0, d.energy - potential);
+}
+
 StableStepRecord stable_step_search(const SweepScene& s, const Integrator& m, const StabilitySpec& st) {
   StableStepRecord r;
   r.scene = s.scene.name;
   r.integrator = m.name();
   r.family = m.family();
-  r.contact_threshold = st.contact_threshold;
-  r.energy_threshold = st.energy_threshold;
-  r.rotation_threshold = st.rotation_threshold;
-  const BallParams& b = s.problem.model().params();
-  const double energy_unit = b.mass * b.gravity * b.radius;
+  r.energy_scale = energy_scale_of(s.problem);
+  r.energy_fraction = st.energy_fraction;
   const double e0 = s.problem.model().derived(s.problem.y0()).energy;
-  for (double h = st.search_h_max; h >= st.search_h_min; h /= 2) {
-    SweepTask task{0, 0, m.name(), h, kNaN};
-    const RunRecord run = run_task(s, task, 5'000'000);
-    StableStepTry t{h, run.status, run.error.contact, kNaN, run.rotation_drift};
-    if (run.status == Status::ok) t.energy_error = std::max(run.energy_drift, std::abs(run.final_energy - e0)) / energy_unit;
-    // an error below the reference's floor is as good as zero
-    const double contact = std::isnan(run.error.contact) && run.status == Status::ok ? 0.0 : run.error.contact;
+  // upward from the smallest step, so that every h below the answer is tried
+  for (double h = st.search_h_min; h <= st.search_h_max * (1 + 1e-12); h *= 2) {
+    const RunRecord run = run_task(s, SweepTask{0, 0, m.name(), h, kNaN}, 5'000'000);
+    StableStepTry t{h, run.status, kNaN, run.rotation_drift, false};
+    if (run.status == Status::ok)
+      t.energy_error = std::max(run.energy_drift, std::abs(run.final_energy - e0)) / r.energy_scale;
+    t.stable = run.status == Status::ok && t.energy_error <= st.energy_fraction;
     r.tried.push_back(t);
-    if (run.status == Status::ok && contact <= st.contact_threshold && t.energy_error <= st.energy_threshold &&
-        t.rotation_defect <= st.rotation_threshold) {
-      r.h = h;
-      break;
-    }
+    if (!t.stable) break;
+    r.h = h;
+    r.rotation_defect = t.rotation_defect;
   }
+  r.at_limit = !r.tried.empty() && r.tried.back().stable;
   return r;
 }
 
@@ -93,12 +98,14 @@ StabilityResults run_stability(const SweepSpec& spec, const std::function<void(c
   if (!spec.stability.enabled) return out;
   const StabilitySpec& st = spec.stability;
 
-  // the scenes once at the search length, with their references
+  // the scenes once at the search length; stability needs no reference
   SweepSpec search = spec;
   search.scenes = st.scenes;
   search.t_end = st.search_t_end;
   search.shard_count = 1;
-  const std::vector<SweepScene> scenes = prepare_scenes(search);
+  const std::vector<SweepScene> scenes = prepare_scenes(search, false);
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
 
   std::size_t index = 0;
   for (const SweepScene& s : scenes)
@@ -107,7 +114,9 @@ StabilityResults run_stability(const SweepSpec& spec, const std::function<void(c
         // the run's own t_end overrides the shortened search length
         DriftRecord d = drift_run(s.problem, find_integrator(name), st);
         d.index = index;
-        progress("stability: drift of " + name + " on " + s.scene.name + ": " + std::string(status_name(d.status)));
+        progress("stability: drift of " + name + " on " + s.scene.name + ": " + std::string(status_name(d.status)) +
+                 " (" + progress_line("drift", index + 1, scenes.size() * st.integrators.size(), elapsed()) +
+                 ")");
         out.drift.push_back(std::move(d));
       }
       ++index;
@@ -121,6 +130,8 @@ StabilityResults run_stability(const SweepSpec& spec, const std::function<void(c
     for (const std::string& name : spec.integrators)
       if (!find_integrator(name).adaptive()) fixed.push_back(name);
   }
+  const auto search_start = elapsed();
+  std::size_t searched = 0;
   for (const SweepScene& s : scenes)
     for (const std::string& name : fixed) {
       if (mine(spec, index)) {
@@ -129,6 +140,9 @@ StabilityResults run_stability(const SweepSpec& spec, const std::function<void(c
         out.largest_stable_h.push_back(std::move(r));
       }
       ++index;
+      if (++searched % 8 == 0)
+        progress(progress_line("stability: largest stable h", searched, scenes.size() * fixed.size(),
+                               elapsed() - search_start, "methods x scenes"));
     }
   progress("stability: done");
   return out;

@@ -1,8 +1,11 @@
 #pragma once
 // Where methods fail: long runs whose energy error and rotation defect are
 // recorded at log-spaced times (bounded, linear, quadratic growth or blow-up
-// can be read off), and for each fixed-step method the largest step at which
-// it stays finite and within stated error thresholds.
+// can be read off), and for each fixed-step method the largest step below
+// which every step of the study stays finite, valid and with a bounded
+// energy error. Accuracy is not stability: no error threshold decides it, and
+// the rotation defect is recorded beside it, not tested (a Lie-group method
+// keeps it at rounding by construction).
 #include <string>
 #include <vector>
 
@@ -25,17 +28,22 @@ struct DriftRecord {
 struct StableStepTry {
   double h;
   Status status;
-  double contact_error;  // NaN when the run failed
-  double energy_error;   // max |H - H0| over the run, in units of m g0 r
-  double rotation_defect;  // max ||R^T R - I||_F over the run
+  double energy_error;     // max |H - H0| over the run / the energy scale; NaN when it failed
+  double rotation_defect;  // max ||R^T R - I||_F over the run: reported, not a criterion
+  bool stable;             // ok and energy_error <= energy_fraction
 };
 
+// The largest h of the ladder h_min, 2 h_min, ... at which the run and every
+// run at a smaller h of the ladder were stable.
 struct StableStepRecord {
   std::size_t index = 0;
   std::string scene, integrator, family;
-  double h = kNaN;  // the largest stable step; NaN when none was found
-  double contact_threshold = 0.0, energy_threshold = 0.0, rotation_threshold = 0.0;
-  std::vector<StableStepTry> tried;
+  double h = kNaN;  // NaN when even h_min was not stable
+  double energy_scale = 0.0;     // m g0 r + the starting kinetic energy
+  double energy_fraction = 0.0;  // the bound on energy_error
+  double rotation_defect = kNaN; // at h
+  bool at_limit = false;         // h is the ladder's top: the method may be stable beyond
+  std::vector<StableStepTry> tried;  // by h ascending, up to the first unstable one
 };
 
 struct StabilityResults {

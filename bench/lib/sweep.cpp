@@ -8,6 +8,7 @@
 #include <sstream>
 #include <thread>
 
+#include "integrators/fixed_step.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
 #include "problems/so3.hpp"
@@ -23,89 +24,203 @@ std::string read_file(const std::string& path) {
   return s.str();
 }
 
-RunOptions options_of(const SweepScene& s, const SweepTask& task, long max_steps) {
+// The options of a task recording the given outputs. A fixed-step method
+// lands on every output time, so outputs closer than h would shorten its
+// steps: of the outputs it keeps the multiples of h (and t_end).
+RunOptions options_of(const SweepScene& s, const SweepTask& task, long max_steps, const std::vector<double>& outputs) {
   RunOptions o;
   o.t_end = s.problem.t_end();
   o.max_steps = max_steps;
   if (std::isnan(task.tol)) {
     o.h = task.h;
-    // a fixed-step method lands on every output time, so outputs closer than
-    // h would shorten its steps: keep the grid times that are multiples of h
-    for (const double t : s.times) {
+    for (const double t : outputs) {
       const double k = std::round(t / task.h);
-      if (std::abs(t - k * task.h) <= 1e-12 * t || t == s.times.back()) o.output_times.push_back(t);
+      if (std::abs(t - k * task.h) <= 1e-12 * t || t == outputs.back()) o.output_times.push_back(t);
     }
   } else {
-    o.output_times = s.times;
+    o.output_times = outputs;
     o.rtol = task.tol;
     o.atol = task.tol;
   }
   return o;
 }
 
-// Errors at t_end and the drift over the outputs.
-void measure(const SweepScene& s, const RunResult& run, RunRecord& r) {
-  const Problem& p = s.problem;
-  const RollingBall& model = p.model();
-  const double e0 = model.derived(p.y0()).energy;
+// The errors of one state against one reference point: {contact, centre,
+// omega, rotation} in their units, and worst, dimensionless.
+struct PointErrors {
+  double values[4];
+  double worst;
+};
+
+PointErrors point_errors(const SweepScene& s, const ReferencePoint& ref, const FlatState& y) {
+  const ReferencePoint got = reference_point_of(s.problem, y);
+  PointErrors e{{(got.alpha - ref.alpha).norm(), (got.centre - ref.centre).norm(), (got.omega - ref.omega).norm(),
+                 rotation_angle_between(ref.R, got.R)},
+                0.0};
+  const double r = s.problem.model().params().radius;
+  const double scales[4] = {r, r, s.omega_scale, 1.0};
+  for (int i = 0; i < 4; ++i) e.worst = std::max(e.worst, e.values[i] / scales[i]);
+  if (!std::isfinite(e.worst)) e.worst = kNaN;
+  return e;
+}
+
+constexpr const char* kComponents[4] = {"contact", "centre", "omega", "rotation"};
+
+// Fills errors from the largest of each component over points (one point:
+// the errors at t_end). A component below the reference's floor is NaN and
+// listed; worst is NaN only when every component is.
+void store(RunErrors& errors, const PointErrors& largest, double floor, int points) {
+  errors.floor = floor;
+  errors.points = points;
+  double* slots[4] = {&errors.contact, &errors.centre, &errors.omega, &errors.rotation};
+  for (int i = 0; i < 4; ++i) {
+    if (largest.values[i] < floor) {
+      errors.below_floor.push_back(kComponents[i]);
+    } else {
+      *slots[i] = largest.values[i];
+    }
+  }
+  if (errors.below_floor.size() == 4) {
+    errors.below_floor.push_back("worst");
+  } else {
+    errors.worst = largest.worst;
+  }
+}
+
+PointErrors largest_of(const PointErrors& a, const PointErrors& b) {
+  PointErrors m = a;
+  for (int i = 0; i < 4; ++i) m.values[i] = std::max(a.values[i], b.values[i]);
+  m.worst = std::max(a.worst, b.worst);
+  return m;
+}
+
+bool reached_end(const SweepScene& s, const RunResult& run) {
+  return run.status == Status::ok && !s.reference.points.empty() && !run.output.t.empty() &&
+         run.output.t.back() == s.reference.t.back();
+}
+
+// Errors at t_end of the run that is timed.
+void measure_end(const SweepScene& s, const RunResult& run, RunRecord& r) {
+  r.error.floor = s.reference.error;
+  if (!reached_end(s, run)) return;
+  const ReferencePoint& ref = s.reference.points.back();
+  const PointErrors e = point_errors(s, ref, run.output.y.back());
+  store(r.error, e, s.reference.error, 1);
+  // relative to the reference's size, with 1 as the scale floor (mixed
+  // absolute-relative, as the IVP Test Set's scd)
+  const double scales[4] = {std::max(1.0, ref.alpha.norm()), std::max(1.0, ref.centre.norm()),
+                            std::max(1.0, ref.omega.norm()), 1.0};
+  double worst_relative = 0.0;
+  for (int i = 0; i < 4; ++i) worst_relative = std::max(worst_relative, e.values[i] / scales[i]);
+  // an error below the reference's floor counts as the floor: no more digits
+  // can be claimed than the reference has
+  if (std::isfinite(worst_relative))
+    r.error.scd = -std::log10(std::max({worst_relative, r.error.floor, 1e-16}));
+}
+
+// The largest errors and the drift over the error grid, from a run that
+// recorded it (every output time is one of the grid's, which the reference
+// has). A run that stopped early keeps its drift, not its errors.
+void measure_grid(const SweepScene& s, const RunResult& run, RunRecord& r) {
+  const RollingBall& model = s.problem.model();
+  const double e0 = model.derived(s.problem.y0()).energy;
   r.energy_drift = 0.0;
-  r.rotation_drift = rotation_defect(rotation_of(p.y0()));
+  r.rotation_drift = rotation_defect(rotation_of(s.problem.y0()));
   for (const FlatState& y : run.output.y) {
     const Derived d = model.derived(y);
     r.energy_drift = std::max(r.energy_drift, std::abs(d.energy - e0));
     r.rotation_drift = std::max(r.rotation_drift, d.rotation_defect);
   }
-  r.final_energy = model.derived(run.final_state).energy;
-  r.error.floor = s.reference.error;
-  if (run.status != Status::ok || s.reference.points.empty() || run.output.t.empty() ||
-      run.output.t.back() != s.reference.t.back())
-    return;
-
-  const ReferencePoint& ref = s.reference.points.back();
-  const ReferencePoint got = reference_point_of(p, run.output.y.back());
-  const double values[4] = {(got.alpha - ref.alpha).norm(), (got.centre - ref.centre).norm(),
-                            (got.omega - ref.omega).norm(), rotation_angle_between(ref.R, got.R)};
-  // relative to the reference's size, with 1 as the scale floor (mixed
-  // absolute-relative, as the IVP Test Set's scd)
-  const double scales[4] = {std::max(1.0, ref.alpha.norm()), std::max(1.0, ref.centre.norm()),
-                            std::max(1.0, ref.omega.norm()), 1.0};
-  const char* names[4] = {"contact", "centre", "omega", "rotation"};
-  double* slots[4] = {&r.error.contact, &r.error.centre, &r.error.omega, &r.error.rotation};
-  double worst_relative = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    worst_relative = std::max(worst_relative, values[i] / scales[i]);
-    if (values[i] < r.error.floor) {
-      r.error.below_floor.push_back(names[i]);
-    } else {
-      *slots[i] = values[i];
-    }
+  r.error_max.floor = s.reference.error;
+  if (!reached_end(s, run)) return;
+  PointErrors largest{{0, 0, 0, 0}, 0.0};
+  std::size_t k = 0;  // both time lists increase: walk them together
+  int points = 0;
+  for (std::size_t i = 0; i < run.output.t.size(); ++i) {
+    while (k < s.reference.t.size() && s.reference.t[k] < run.output.t[i]) ++k;
+    if (k == s.reference.t.size() || s.reference.t[k] != run.output.t[i]) continue;
+    largest = largest_of(largest, point_errors(s, s.reference.points[k], run.output.y[i]));
+    ++points;
   }
-  // an error below the reference's floor counts as the floor: no more digits
-  // can be claimed than the reference has
-  if (std::isfinite(worst_relative)) r.error.scd = -std::log10(std::max({worst_relative, r.error.floor, 1e-16}));
+  store(r.error_max, largest, s.reference.error, points);
+}
+
+RunResult integrate_safely(const Integrator& m, const Problem& problem, const RunOptions& o) {
+  try {
+    return m.integrate(problem, o);
+  } catch (const std::exception& e) {
+    // an option the method cannot take is a failed run, not a failed sweep
+    RunResult run;
+    run.status = Status::error;
+    run.message = e.what();
+    run.final_state = problem.y0();
+    return run;
+  }
+}
+
+double largest_omega(const Reference& reference) {
+  double w = 0.0;
+  for (const ReferencePoint& p : reference.points) w = std::max(w, p.omega.norm());
+  return w > 0.0 ? w : 1.0;
 }
 
 }  // namespace
 
-std::vector<SweepScene> prepare_scenes(const SweepSpec& spec) {
+std::string progress_line(const std::string& phase, std::size_t done, std::size_t total, double elapsed_s,
+                          const std::string& unit) {
+  const double eta = done > 0 ? elapsed_s / static_cast<double>(done) * static_cast<double>(total - done) : 0.0;
+  std::ostringstream s;
+  s.precision(3);
+  s << phase << ": " << done << "/" << total << " " << unit << ", " << elapsed_s << " s elapsed, about " << eta
+    << " s left";
+  return s.str();
+}
+
+std::vector<SweepScene> prepare_scenes(const SweepSpec& spec, bool with_references,
+                                       const std::function<void(const std::string&)>& progress) {
   std::vector<std::string> names = spec.scenes.empty() ? shipped_scene_names() : spec.scenes;
   std::vector<SweepScene> out;
+  const auto start = std::chrono::steady_clock::now();
   for (const std::string& name : names) {
+    if (progress && with_references)
+      progress(progress_line("references", out.size(), names.size(),
+                             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                             "scenes") +
+               " (next: " + name + ")");
     Scene scene = load_scene(name);
     if (spec.t_end > 0.0) scene.t_end = std::min(scene.t_end, spec.t_end);
     Problem problem = make_problem(scene);
+    const double spacing = spec.dt_out > 0.0 ? spec.dt_out : spec.error_dt;
     std::vector<double> times;
-    for (int k = 1; k * spec.dt_out < scene.t_end - 1e-12; ++k) times.push_back(k * spec.dt_out);
+    for (int k = 1; k * spacing < scene.t_end - 1e-12; ++k) times.push_back(k * spacing);
     times.push_back(scene.t_end);
+    const std::vector<double> timed = spec.dt_out > 0.0 ? times : std::vector<double>{scene.t_end};
     std::ostringstream content;
     content.precision(17);
     content << read_file(scene.source) << "|t_end=" << scene.t_end;
     ReferenceSettings settings;
     settings.cache_dir = spec.cache_dir;
-    Reference reference = make_reference(problem, content.str(), times, settings);
-    out.push_back(SweepScene{std::move(scene), std::move(problem), content.str(), std::move(times), std::move(reference)});
+    Reference reference;
+    if (with_references) {
+      reference = make_reference(problem, content.str(), times, settings);
+    } else {
+      reference.scene = scene.name;
+      reference.kind = "none";
+      reference.message = "not needed";
+    }
+    const double omega_scale = largest_omega(reference);
+    out.push_back(SweepScene{std::move(scene), std::move(problem), content.str(), std::move(times), timed,
+                             std::move(reference), omega_scale});
   }
   return out;
+}
+
+RunOptions timed_options(const SweepScene& s, const SweepTask& task, long max_steps) {
+  return options_of(s, task, max_steps, s.timed_times);
+}
+
+std::size_t output_count(const Problem& problem, const RunOptions& options) {
+  return output_times_of(problem, options).size();
 }
 
 std::vector<SweepTask> sweep_tasks(const SweepSpec& spec, const std::vector<SweepScene>& scenes) {
@@ -141,21 +256,37 @@ RunRecord run_task(const SweepScene& s, const SweepTask& task, long max_steps) {
   r.needs_jacobian = m.needs_jacobian();
   r.h = task.h;
   r.rtol = r.atol = task.tol;
-  RunResult run;
-  try {
-    run = m.integrate(s.problem, options_of(s, task, max_steps));
-  } catch (const std::exception& e) {
-    // an option the method cannot take is a failed run, not a failed sweep
-    run.status = Status::error;
-    run.message = e.what();
-    run.final_state = s.problem.y0();
-  }
+  const RunOptions timed = timed_options(s, task, max_steps);
+  const RunResult run = integrate_safely(m, s.problem, timed);
   r.status = run.status;
   r.message = run.message;
   r.stop_time = run.stop_time;
   r.cost = run.cost;
+  r.timed_outputs = output_count(s.problem, timed);
   r.final_state = run.final_state;
-  measure(s, run, r);
+  r.final_energy = s.problem.model().derived(run.final_state).energy;
+  measure_end(s, run, r);
+  const RunOptions grid = options_of(s, task, max_steps, s.times);
+  if (grid.output_times == timed.output_times) {
+    measure_grid(s, run, r);
+    r.error_max_source = {true, run.cost.steps};
+  } else {
+    const RunResult on_grid = integrate_safely(m, s.problem, grid);
+    measure_grid(s, on_grid, r);
+    r.error_max_source = {on_grid.cost.steps == run.cost.steps && on_grid.cost.rejected == run.cost.rejected,
+                          on_grid.cost.steps};
+    // the drivers check lift-off and curvature at outputs only: a failure
+    // the grid run meets before the timed run's end or stop stands for the run
+    if (on_grid.status != Status::ok && (run.status == Status::ok || on_grid.stop_time < run.stop_time)) {
+      r.status = on_grid.status;
+      r.message = on_grid.message + " (met by the untimed run on the error grid)";
+      r.stop_time = on_grid.stop_time;
+      r.final_state = on_grid.final_state;
+      r.final_energy = s.problem.model().derived(on_grid.final_state).energy;
+      r.error = RunErrors{};
+      r.error.floor = s.reference.error;
+    }
+  }
   return r;
 }
 
@@ -167,12 +298,7 @@ std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepS
   const auto start = clock::now();
   auto report = [&](const char* phase, std::size_t done, std::size_t total, clock::time_point since,
                     const char* unit = "runs") {
-    const double elapsed = std::chrono::duration<double>(clock::now() - since).count();
-    const double eta = done > 0 ? elapsed / static_cast<double>(done) * static_cast<double>(total - done) : 0.0;
-    std::ostringstream s;
-    s.precision(3);
-    s << phase << ": " << done << "/" << total << " " << unit << ", " << elapsed << " s elapsed, about " << eta << " s left";
-    progress(s.str());
+    progress(progress_line(phase, done, total, std::chrono::duration<double>(clock::now() - since).count(), unit));
   };
 
   // accuracy: parallel; a shared counter hands out tasks
@@ -205,7 +331,7 @@ std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepS
   std::vector<RunOptions> opts;
   std::vector<const Integrator*> methods;
   for (const SweepTask& task : tasks) {
-    opts.push_back(options_of(scenes[task.scene], task, spec.max_steps));
+    opts.push_back(timed_options(scenes[task.scene], task, spec.max_steps));
     methods.push_back(&find_integrator(task.integrator));
   }
   std::vector<double> spent(tasks.size(), 0.0);

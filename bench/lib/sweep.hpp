@@ -16,22 +16,35 @@ namespace rb {
 
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// A scene ready to sweep: the problem, its output grid and its reference.
+// A scene ready to sweep: the problem, its output grids and its reference.
 struct SweepScene {
   Scene scene;
   Problem problem;
   std::string content;  // the scene file's text (cache key)
-  std::vector<double> times;
+  std::vector<double> times;        // the error grid: reference, error_max and drift
+  std::vector<double> timed_times;  // what the timed call records: t_end, or the --dt-out grid
   Reference reference;
+  double omega_scale = 1.0;  // the largest |omega| of the reference (1 where it is at rest)
 };
 
-// Errors at the end of a run against the reference. NaN where not measured
-// (the run stopped early) or below the reference's floor (listed by name).
+// Errors against the reference: contact, centre, omega and rotation, and
+// worst = max(contact / r, centre / r, omega / omega_scale, rotation). NaN
+// where not measured (the run stopped early) or below the reference's floor
+// (listed by name; worst only when every component is).
 struct RunErrors {
-  double contact = kNaN, centre = kNaN, omega = kNaN, rotation = kNaN;
+  double contact = kNaN, centre = kNaN, omega = kNaN, rotation = kNaN, worst = kNaN;
   double floor = 0.0;
   std::vector<std::string> below_floor;
   double scd = kNaN;  // significant correct digits: -log10 of the largest relative error
+  int points = 0;     // output times measured (1 at t_end)
+};
+
+// How the largest error over the outputs was obtained: from an untimed run
+// that records the error grid, which for fixed-step and dense-output methods
+// takes the timed run's steps; same_steps says whether it did.
+struct ErrorMaxSource {
+  bool same_steps = true;
+  long steps = 0;  // accepted steps of the grid run
 };
 
 struct RunRecord {
@@ -44,16 +57,27 @@ struct RunRecord {
   std::string message;
   double stop_time = 0.0;
   Cost cost;
+  std::size_t timed_outputs = 0;     // output times the timed call records
   std::vector<double> wall_samples;  // seconds, one per timed repeat
-  RunErrors error;
-  double energy_drift = kNaN;     // max |H(t) - H(0)| over the outputs
-  double rotation_drift = kNaN;   // max ||R^T R - I||_F over the outputs
+  RunErrors error;                   // at t_end, of the run that is timed
+  RunErrors error_max;               // the largest over the error grid
+  ErrorMaxSource error_max_source;
+  double energy_drift = kNaN;     // max |H(t) - H(0)| over the error grid
+  double rotation_drift = kNaN;   // max ||R^T R - I||_F over the error grid
   FlatState final_state = FlatState::Zero();
   double final_energy = kNaN;
 };
 
-// Loads the scenes of a spec (applying its t_end) and their references.
-std::vector<SweepScene> prepare_scenes(const SweepSpec& spec);
+// Loads the scenes of a spec (applying its t_end) and, unless told not to,
+// their references (without: kind "none", no points); progress, when given,
+// gets a line with an estimate before each scene's reference.
+std::vector<SweepScene> prepare_scenes(const SweepSpec& spec, bool with_references = true,
+                                       const std::function<void(const std::string&)>& progress = {});
+
+// "phase: 3/10 runs, 1.2 s elapsed, about 2.8 s left": progress with an
+// estimate from the time per item so far.
+std::string progress_line(const std::string& phase, std::size_t done, std::size_t total, double elapsed_s,
+                          const std::string& unit = "runs");
 
 // One (scene, integrator, h | tol) combination, in sweep order.
 struct SweepTask {
@@ -67,7 +91,16 @@ struct SweepTask {
 // The tasks of this shard, in a deterministic order.
 std::vector<SweepTask> sweep_tasks(const SweepSpec& spec, const std::vector<SweepScene>& scenes);
 
-// Runs one task without timing and measures it.
+// The options of the timed call of a task: the run to t_end recording the
+// scene's timed_times (for a fixed-step method, those that are multiples of h).
+RunOptions timed_options(const SweepScene& scene, const SweepTask& task, long max_steps);
+
+// How many output times a run with these options records (t_end included).
+std::size_t output_count(const Problem& problem, const RunOptions& options);
+
+// Runs one task without timing and measures it: once as it is timed (cost,
+// errors at t_end) and, where the timed call does not record the error grid,
+// once more recording it (error_max, drift).
 RunRecord run_task(const SweepScene& scene, const SweepTask& task, long max_steps);
 
 // Runs every task (accuracy in parallel, timing serially). progress(done,

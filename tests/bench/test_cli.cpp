@@ -125,7 +125,7 @@ TEST(Cli, RunWritesAReportAndAShortTable) {
   ASSERT_EQ(o.code, 0) << o.err;
   EXPECT_NE(o.out.find("rkmk4"), std::string::npos);
   EXPECT_NE(o.err.find("reference of plane: exact"), std::string::npos) << o.err;
-  EXPECT_NE(slurp(report).find("\"schema\": \"rollbench.report/1\""), std::string::npos);
+  EXPECT_NE(slurp(report).find("\"schema\": \"rollbench.report/2\""), std::string::npos);
 }
 
 }  // namespace

@@ -29,7 +29,7 @@ TEST(OrderFit, ExactPowerLawGivesItsExponent) {
   EXPECT_NEAR(fit.intercept, std::log10(3.0), 1e-12);
   EXPECT_NEAR(fit.r2, 1.0, 1e-12);
   EXPECT_NEAR(fit.residual, 0.0, 1e-12);
-  EXPECT_EQ(fit.points, 5);  // the five smallest steps
+  EXPECT_EQ(fit.points, 6);  // the six smallest steps
   EXPECT_DOUBLE_EQ(fit.h_min, std::ldexp(1.0, -9));
 }
 
@@ -62,6 +62,72 @@ TEST(OrderFit, TooFewPointsGiveNoSlope) {
   EXPECT_TRUE(std::isnan(fit_order({0.1}, {1e-3}).slope));
   EXPECT_TRUE(std::isnan(fit_order({0.1, 0.05}, {NAN, 1e-3}).slope));
   EXPECT_EQ(fit_order({0.1, 0.05}, {1e-3, 2.5e-4}).points, 2);
+}
+
+TEST(OrderFit, PreAsymptoticStepsOfAnEighthOrderMethodDoNotDecide) {
+  // e = h^8 / (1 + 30 h^3): order 8 only below h ~ 0.1, much flatter above
+  // (as rkmk8's and odeint-fehlberg78's rotation errors are); the window of
+  // the smallest steps reads 8, not the slope of the large ones
+  const std::vector<double> h = steps(0, 7);
+  const OrderFit fit = fit_order(h, errors(h, [](double x) { return std::pow(x, 8) / (1.0 + 30.0 * x * x * x); }));
+  EXPECT_NEAR(fit.slope, 8.0, 0.1);
+  EXPECT_LE(fit.h_max, 0.125);
+  EXPECT_EQ(order_verdict(fit, 8), "as declared");
+  // all points in one line read 7.4 and would fail the method
+  EXPECT_LT(fit_line(errors(h, [](double x) { return std::log10(x); }),
+                     errors(h, [](double x) { return std::log10(std::pow(x, 8) / (1.0 + 30.0 * x * x * x)); }))
+                .slope,
+            7.6);
+}
+
+TEST(OrderVerdict, ThreePointsAreInconclusiveHoweverGoodTheirSlope) {
+  const std::vector<double> h = steps(4, 6);
+  const OrderFit fit = fit_order(h, errors(h, [](double x) { return std::pow(x, 4); }));
+  EXPECT_EQ(fit.points, 3);
+  EXPECT_NEAR(fit.slope, 4.0, 1e-12);
+  EXPECT_EQ(order_verdict(fit, 4), "inconclusive");
+}
+
+TEST(OrderVerdict, FollowsTheIntervalNotTheSlope) {
+  OrderFit fit;
+  fit.points = 6;
+  fit.slope = 4.0;
+  fit.slope_ci95 = 0.5;  // +-0.5: wider than +-0.3
+  EXPECT_EQ(order_verdict(fit, 4), "inconclusive");
+  fit.slope_ci95 = 0.1;
+  EXPECT_EQ(order_verdict(fit, 4), "as declared");
+  fit.slope = 5.2;  // higher than declared is no failure
+  EXPECT_EQ(order_verdict(fit, 4), "as declared");
+  fit.slope = 3.5;  // [3.4, 3.6] lies below 3.8
+  EXPECT_EQ(order_verdict(fit, 4), "lower");
+  fit.slope = 3.75;  // [3.65, 3.85] straddles 3.8
+  EXPECT_EQ(order_verdict(fit, 4), "inconclusive");
+  fit.slope = 3.95;  // [3.85, 4.05]: within 0.2
+  EXPECT_EQ(order_verdict(fit, 4), "as declared");
+}
+
+TEST(OrderVerdict, NoisyDataGiveAWideIntervalAndNoVerdict) {
+  // order 4 with a factor of 3 scattered on alternate points
+  const std::vector<double> h = steps(2, 9);
+  std::vector<double> e = errors(h, [](double x) { return std::pow(x, 4); });
+  for (std::size_t i = 0; i < e.size(); i += 2) e[i] *= 3.0;
+  const OrderFit fit = fit_order(h, e);
+  EXPECT_GT(fit.slope_ci95, 0.3);
+  EXPECT_EQ(order_verdict(fit, 4), "inconclusive");
+}
+
+TEST(LineFit, SlopeInterceptAndResidualOfKnownLines) {
+  const LineFit exact = fit_line({-3, -5, -7, -9}, {-2.5, -4.5, -6.5, -8.5});
+  EXPECT_NEAR(exact.slope, 1.0, 1e-14);
+  EXPECT_NEAR(exact.intercept, 0.5, 1e-14);
+  EXPECT_NEAR(exact.residual, 0.0, 1e-14);
+  EXPECT_EQ(exact.points, 4);
+  // residuals +-0.1 alternating about slope 0.5: rms 0.1
+  const LineFit noisy = fit_line({0, 1, 2, 3}, {0.1, 0.4, 1.1, 1.4});
+  EXPECT_NEAR(noisy.slope, 0.46, 1e-12);
+  EXPECT_GT(noisy.residual, 0.05);
+  EXPECT_TRUE(std::isnan(fit_line({1, 1}, {2, 3}).slope));
+  EXPECT_EQ(fit_line({1, NAN, 2}, {1, 2, 3}).points, 2);
 }
 
 }  // namespace

@@ -46,9 +46,9 @@ TEST(Report, QuickPresetFollowsTheSchemaAndRoundTrips) {
   using t = json::value_t;
   expect_keys(r, {{"schema", t::string}, {"created", t::string}, {"git", t::string}, {"machine", t::object},
                   {"build", t::object}, {"runs", t::array}, {"orders", t::array}, {"references", t::array},
-                  {"stability", t::object}},
+                  {"stability", t::object}, {"tolerance_fits", t::array}, {"timed_call", t::object}},
               "report");
-  EXPECT_EQ(r["schema"], "rollbench.report/1");
+  EXPECT_EQ(r["schema"], "rollbench.report/2");
   expect_keys(r["machine"], {{"cpu", t::string}, {"cores", t::number_unsigned}, {"os", t::string}}, "machine");
   expect_keys(r["build"], {{"compiler", t::string}, {"flags", t::string}, {"type", t::string}}, "build");
   ASSERT_FALSE(r["runs"].empty());
@@ -58,14 +58,17 @@ TEST(Report, QuickPresetFollowsTheSchemaAndRoundTrips) {
                       {"rtol", t::number_float}, {"atol", t::number_float}, {"status", t::string},
                       {"stop_time", t::number_float}, {"steps", t::number_integer}, {"rejected", t::number_integer},
                       {"rhs_evals", t::number_integer}, {"wall_s", t::object}, {"error", t::object},
-                      {"drift", t::object}, {"final", t::object}},
+                      {"drift", t::object}, {"final", t::object}, {"error_max", t::object},
+                      {"timed_outputs", t::number_unsigned}},
                 "run");
     expect_keys(run["wall_s"], {{"median", t::number_float}, {"min", t::number_float}, {"max", t::number_float},
                                 {"samples", t::array}},
                 "wall_s");
-    expect_keys(run["error"], {{"reference", t::string}, {"contact", t::number_float}, {"centre", t::number_float},
-                               {"omega", t::number_float}, {"rotation", t::number_float}},
-                "error");
+    for (const char* errors : {"error", "error_max"})
+      expect_keys(run[errors], {{"reference", t::string}, {"contact", t::number_float}, {"centre", t::number_float},
+                                {"omega", t::number_float}, {"rotation", t::number_float}, {"worst", t::number_float}},
+                  errors);
+    EXPECT_EQ(run["timed_outputs"], 1u) << "the quick preset times the run to t_end alone";
     EXPECT_EQ(run["adaptive"].get<bool>(), run["h"].is_null());
   }
   const json again = json::parse(r.dump());
@@ -87,6 +90,15 @@ TEST(Report, ObservedOrdersOfTheQuickPreset) {
                          Expect{"rkmk4-seminar", "rotation", 3}, Expect{"odeint-rk4", "contact", 4},
                          Expect{"gsl-rk4", "contact", 4}})
     EXPECT_NEAR(observed(r, "valley-sideways", e.method, e.component), e.order, 0.2) << e.method << " " << e.component;
+  // every verdict is one of three, and a clean fourth-order method's are as declared
+  for (const json& o : r["orders"])
+    for (const auto& [component, verdict] : o["verdicts"].items())
+      EXPECT_TRUE(verdict == "as declared" || verdict == "lower" || verdict == "inconclusive") << verdict;
+  for (const json& o : r["orders"])
+    if (o["scene"] == "valley-sideways" && (o["integrator"] == "rkmk4" || o["integrator"] == "rkmk4-seminar")) {
+      EXPECT_EQ(o["verdicts"]["rotation"], "as declared") << o["integrator"] << ": " << o["ci95"].dump();
+      EXPECT_EQ(o["pass"], true) << o["integrator"];
+    }
 }
 
 TEST(Report, ReferencesAgreeWithTheirCrossCheck) {

@@ -69,7 +69,8 @@ TEST(Baseline, ProjectedStepIsTheClosestRotationToTheRk4Step) {
     const RunResult projected = find_integrator("rk4-projected").integrate(valley(), o);
     const Mat3 R_plain = rotation_of(plain.final_state);
     const Mat3 R = rotation_of(projected.final_state);
-    EXPECT_LT((R - project_to_so3(R_plain)).norm(), 1e-15);
+    // rk4-projected's Newton-Schulz step and the SVD agree to their rounding
+    EXPECT_LT((R - project_to_so3(R_plain)).norm(), 4e-15);
     EXPECT_LT((R - R_plain).norm(), 2.0 * rotation_defect(R_plain) + 1e-15);
   }
 }

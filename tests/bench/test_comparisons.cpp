@@ -1,0 +1,182 @@
+// Comparisons that measure what they claim: errors that see R (error.worst,
+// error_max), the timed call's outputs (--dt-out does not set an adaptive
+// method's steps), and a stability study whose answer holds at every
+// smaller step.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "bench/lib/order_fit.hpp"
+#include "bench/lib/report.hpp"
+#include "integrators/registry.hpp"
+
+namespace rb {
+namespace {
+
+SweepSpec one_scene(const std::string& scene, double t_end) {
+  SweepSpec spec = preset("quick");
+  spec.scenes = {scene};
+  spec.t_end = t_end;
+  spec.repeats = 0;
+  return spec;
+}
+
+RunRecord run_one(const SweepScene& s, const std::string& method, double h, double tol = kNaN) {
+  return run_task(s, SweepTask{0, 0, method, h, tol}, 5'000'000);
+}
+
+// rkmk8 and odeint-fehlberg78 share a tableau and, for a homogeneous ball
+// whose R never feeds back, the same contact point to rounding: only an
+// error that sees R can tell them apart.
+TEST(Comparisons, WorstErrorTellsApartMethodsWhoseContactErrorsAgree) {
+  const std::vector<SweepScene> scenes = prepare_scenes(one_scene("bumpy-long", 0.0));
+  const SweepScene& s = scenes.front();
+  const RunRecord lie = run_one(s, "rkmk8", 0.25), flat = run_one(s, "odeint-fehlberg78", 0.25);
+  ASSERT_EQ(lie.status, Status::ok);
+  ASSERT_EQ(flat.status, Status::ok);
+  ASSERT_TRUE(std::isfinite(lie.error.contact) && std::isfinite(flat.error.contact));
+  EXPECT_NEAR(lie.error.contact, flat.error.contact, 1e-5 * flat.error.contact);
+  const double ratio = lie.error.rotation / flat.error.rotation;
+  EXPECT_TRUE(ratio > 2.0 || ratio < 0.5) << lie.error.rotation << " vs " << flat.error.rotation;
+  const double worst_ratio = lie.error.worst / flat.error.worst;
+  EXPECT_TRUE(worst_ratio > 2.0 || worst_ratio < 0.5) << lie.error.worst << " vs " << flat.error.worst;
+  // worst is the largest of the scaled components
+  const double r = s.problem.model().params().radius;
+  for (const RunRecord* x : {&lie, &flat}) {
+    EXPECT_GE(x->error.worst, x->error.contact / r);
+    EXPECT_GE(x->error.worst, x->error.centre / r);
+    EXPECT_GE(x->error.worst, x->error.rotation);
+    EXPECT_GE(x->error.worst, x->error.omega / s.omega_scale);
+  }
+}
+
+TEST(Comparisons, ErrorMaxCoversTheGridAndBoundsTheErrorAtTheEnd) {
+  const std::vector<SweepScene> scenes = prepare_scenes(one_scene("valley-sideways", 2.0));
+  const SweepScene& s = scenes.front();
+  ASSERT_EQ(s.times.size(), 8u);  // every 0.25 up to 2
+  ASSERT_EQ(s.timed_times, std::vector<double>{2.0});
+  for (const auto& [method, h, tol] : {std::tuple{"rk4", 0.0625, kNaN}, {"rk4", 0.5, kNaN},
+                                       {"odeint-dopri5-adaptive", kNaN, 1e-6}, {"gsl-rkf45-adaptive", kNaN, 1e-6}}) {
+    const RunRecord x = run_one(s, method, h, tol);
+    ASSERT_EQ(x.status, Status::ok) << method;
+    EXPECT_EQ(x.error.points, 1);
+    EXPECT_EQ(x.timed_outputs, 1u) << "the timed call records t_end only";
+    // a fixed step of 0.5 is measured at the grid's multiples of 0.5
+    EXPECT_EQ(x.error_max.points, h == 0.5 ? 4 : 8) << method;
+    // a method that lands on each output takes other steps on the grid
+    EXPECT_EQ(x.error_max_source.same_steps, std::string(method) != "gsl-rkf45-adaptive") << method;
+    if (!x.error_max_source.same_steps) continue;
+    EXPECT_GE(x.error_max.worst, x.error.worst) << method;
+    EXPECT_GE(x.error_max.rotation, x.error.rotation) << method;
+    EXPECT_GE(x.error_max.contact, x.error.contact) << method;
+  }
+}
+
+// A dense-output method's steps are its controller's alone: recording
+// outputs coarser than its steps, or none but t_end, does not change them.
+TEST(Comparisons, AnAdaptiveMethodsStepsDoNotDependOnACoarserOutputGrid) {
+  for (const char* method : {"odeint-dopri5-adaptive", "rkmk-dp54-adaptive"}) {
+    std::vector<long> steps;
+    for (const double dt_out : {0.0, 2.5, 1.25}) {
+      SweepSpec spec = one_scene("bowl-3d", 5.0);
+      spec.dt_out = dt_out;
+      const std::vector<SweepScene> scenes = prepare_scenes(spec);
+      const RunRecord x = run_one(scenes.front(), method, kNaN, 1e-8);
+      ASSERT_EQ(x.status, Status::ok) << method;
+      EXPECT_LT(5.0 / static_cast<double>(x.cost.steps), 0.5) << "its steps are finer than the outputs";
+      EXPECT_TRUE(x.error_max_source.same_steps) << method << ", dt_out " << dt_out;
+      steps.push_back(x.cost.steps);
+    }
+    EXPECT_EQ(steps[0], steps[1]) << method;
+    EXPECT_EQ(steps[0], steps[2]) << method;
+  }
+  // a method that lands on every output takes more steps on a grid; the
+  // timed call, asked for t_end only, does not pay them
+  const std::vector<SweepScene> scenes = prepare_scenes(one_scene("bowl-3d", 5.0));
+  const RunRecord x = run_one(scenes.front(), "odeint-fehlberg78-adaptive", kNaN, 1e-4);
+  RunOptions end_only;
+  end_only.rtol = end_only.atol = 1e-4;
+  const RunResult alone = find_integrator("odeint-fehlberg78-adaptive").integrate(scenes.front().problem, end_only);
+  EXPECT_EQ(x.cost.steps, alone.cost.steps);
+  EXPECT_GT(x.error_max_source.steps, x.cost.steps);
+  EXPECT_FALSE(x.error_max_source.same_steps);
+}
+
+TEST(Comparisons, TheTimedCallOfEveryMethodRecordsTheSameOutputs) {
+  SweepSpec spec = one_scene("valley-sideways", 2.0);
+  spec.dt_out = 0.5;
+  const std::vector<SweepScene> scenes = prepare_scenes(spec);
+  for (const auto& [method, h, tol] :
+       {std::tuple{"rk4", 0.125, kNaN}, {"rkmk4", 0.25, kNaN}, {"odeint-fehlberg78-adaptive", kNaN, 1e-6}}) {
+    const RunRecord x = run_one(scenes.front(), method, h, tol);
+    EXPECT_EQ(x.timed_outputs, 4u) << method;
+    EXPECT_TRUE(x.error_max_source.same_steps) << method << ": the timed call records the error grid itself";
+  }
+}
+
+TEST(Comparisons, ToleranceFitsOfAdaptiveMethods) {
+  SweepSpec spec = one_scene("valley-sideways", 2.0);
+  spec.integrators = {"odeint-dopri5-adaptive", "rk4"};
+  spec.tols = {1e-4, 1e-6, 1e-8};
+  spec.hs = {0.1};
+  const std::vector<SweepScene> scenes = prepare_scenes(spec);
+  const auto quiet = [](const std::string&) {};
+  const nlohmann::json report = make_report(spec, scenes, run_sweep(spec, scenes, quiet), {});
+  ASSERT_EQ(report["tolerance_fits"].size(), 1u) << "fixed-step methods have no tolerance";
+  const nlohmann::json& fit = report["tolerance_fits"][0];
+  EXPECT_EQ(fit["integrator"], "odeint-dopri5-adaptive");
+  EXPECT_EQ(fit["points"], 3);
+  // a 5th-order method's error falls with the tolerance, at most in proportion
+  const double slope = fit["slope"].get<double>();
+  EXPECT_GT(slope, 0.5);
+  EXPECT_LT(slope, 1.5);
+  // the fit is the least-squares line of its runs' points
+  std::vector<double> x, y;
+  for (const nlohmann::json& run : report["runs"])
+    if (run["adaptive"].get<bool>()) {
+      x.push_back(std::log10(run["rtol"].get<double>()));
+      y.push_back(std::log10(run["error"]["worst"].get<double>()));
+    }
+  EXPECT_NEAR(slope, fit_line(x, y).slope, 1e-12);
+}
+
+TEST(Stability, TheLargestStableStepHoldsAtEverySmallerStep) {
+  SweepSpec spec = one_scene("bowl-3d", 0.0);
+  spec.integrators = {"rk4", "rkmk4", "euler"};
+  spec.stability.enabled = true;
+  spec.stability.scenes = {"bowl-3d"};
+  spec.stability.integrators = {};
+  spec.stability.search_t_end = 4.0;
+  const StabilityResults st = run_stability(spec, [](const std::string&) {});
+  ASSERT_EQ(st.largest_stable_h.size(), 3u);
+  for (const StableStepRecord& r : st.largest_stable_h) {
+    ASSERT_FALSE(r.tried.empty());
+    EXPECT_DOUBLE_EQ(r.tried.front().h, spec.stability.search_h_min) << r.integrator;
+    double largest_stable = kNaN;
+    for (std::size_t i = 0; i < r.tried.size(); ++i) {
+      const StableStepTry& t = r.tried[i];
+      if (i > 0) {
+        EXPECT_DOUBLE_EQ(t.h, 2 * r.tried[i - 1].h) << r.integrator << ": every step of the ladder";
+      }
+      EXPECT_EQ(t.stable, t.status == Status::ok && t.energy_error <= r.energy_fraction) << r.integrator;
+      // stable up to the answer, the first unstable one ends the ladder
+      EXPECT_EQ(t.stable, i + 1 < r.tried.size() || r.at_limit) << r.integrator << " at h = " << t.h;
+      if (t.stable) largest_stable = t.h;
+    }
+    EXPECT_EQ(r.h, largest_stable) << r.integrator;
+    ASSERT_TRUE(std::isfinite(r.h)) << r.integrator;
+    EXPECT_FALSE(r.at_limit) << r.integrator << " is unstable somewhere below h = 8";
+  }
+  // Euler's energy grows at every step: it is stable only at small steps
+  EXPECT_LT(st.largest_stable_h[2].h, st.largest_stable_h[0].h);
+  // the rotation defect is a column, not a criterion: a Lie-group method
+  // keeps it at rounding wherever it is stable, rk4 does not
+  const StableStepRecord& rk4 = st.largest_stable_h[0];
+  const StableStepRecord& rkmk4 = st.largest_stable_h[1];
+  EXPECT_EQ(rkmk4.integrator, "rkmk4");
+  EXPECT_LT(rkmk4.rotation_defect, 1e-12);
+  EXPECT_GT(rk4.rotation_defect, 1e-6);
+}
+
+}  // namespace
+}  // namespace rb
