@@ -128,5 +128,19 @@ TEST(Cli, RunWritesAReportAndAShortTable) {
   EXPECT_NE(slurp(report).find("\"schema\": \"rollbench.report/2\""), std::string::npos);
 }
 
+TEST(Cli, RunDtOutSetsTheTimedOutputsAndRejectsBadSpacing) {
+  const fs::path report = temp_file("dt-out.json");
+  const Outcome o = rollbench("run --preset quick --scenes plane --integrators rk4 --h 0.25 --repeats 0 "
+                              "--no-stability --dt-out 0.5 --out " + report.string());
+  ASSERT_EQ(o.code, 0) << o.err;
+  // plane runs 2 s in the quick preset: outputs 0.5, 1, 1.5, 2
+  EXPECT_NE(slurp(report).find("\"timed_outputs\": 4"), std::string::npos);
+  for (const char* bad : {"0", "-1", "inf"}) {
+    const Outcome b = rollbench(std::string("run --preset quick --dt-out ") + bad + " --out " + report.string());
+    EXPECT_EQ(b.code, 2) << bad;
+    EXPECT_EQ(b.err, "rollbench: 'dt-out': the output spacing must be a finite number > 0\n") << bad;
+  }
+}
+
 }  // namespace
 }  // namespace rb
