@@ -204,8 +204,10 @@ std::filesystem::path default_cache_dir() {
 const NativeSettings& NativeSettings::from_environment() {
   static const NativeSettings settings = [] {
     NativeSettings s;
-    const char* mode = std::getenv("RB_NATIVE_FORMULA");
-    s.enabled = !(mode && std::string(mode) == "off");
+    // anything but unset, "on" or "off" is a mistake: the tape, and the one line says so
+    const std::string mode = std::getenv("RB_NATIVE_FORMULA") ? std::getenv("RB_NATIVE_FORMULA") : "";
+    s.enabled = mode.empty() || mode == "on";
+    if (!s.enabled && mode != "off") s.refusal = "RB_NATIVE_FORMULA='" + mode + "' is neither on nor off";
     if (const char* cc = std::getenv("RB_NATIVE_CC"); cc && *cc) s.compiler = cc;
     const char* dir = std::getenv("RB_NATIVE_CACHE");
     s.cache_dir = dir && *dir ? std::string(dir) : default_cache_dir().string();
@@ -215,7 +217,8 @@ const NativeSettings& NativeSettings::from_environment() {
 }
 
 NativeResult compile_native(const FormulaTape& tape, const NativeSettings& settings) {
-  if (!settings.enabled) return {{}, NativeOutcome::disabled, "RB_NATIVE_FORMULA=off"};
+  if (!settings.enabled)
+    return {{}, NativeOutcome::disabled, settings.refusal.empty() ? "RB_NATIVE_FORMULA=off" : settings.refusal};
   if (!tape.usable()) return {{}, NativeOutcome::unavailable, "the formula is too long to lower"};
   const std::filesystem::path folder = settings.cache_dir;
   std::error_code error;
@@ -264,7 +267,7 @@ bool Formula::compile_native() {
     static std::atomic<bool> said{false};
     if (!said.exchange(true))
       std::fprintf(stderr, "rollbench: landscape formulas run on the tape, not as native code (%s)\n",
-                   result.outcome == NativeOutcome::disabled ? "RB_NATIVE_FORMULA=off" : result.why.c_str());
+                   result.why.c_str());
   }
   return is_native();
 }
