@@ -139,7 +139,6 @@ bool build_entry(const std::filesystem::path& path, const std::string& source, c
   const std::string stem = path.string() + ".tmp." + std::to_string(getpid()) + "." +
                            std::to_string(unique_counter.fetch_add(1));
   const std::string c_file = stem + ".c", so_file = stem + ".so";
-  std::error_code ignored;
   bool ok = false;
   {
     std::ofstream out(c_file, std::ios::binary);
@@ -157,9 +156,11 @@ bool build_entry(const std::filesystem::path& path, const std::string& source, c
     std::ofstream out(so_file, std::ios::binary | std::ios::app);
     ok = !object.empty() && static_cast<bool>(out << trailer(object, key)) && static_cast<bool>(out.flush());
   }
-  std::filesystem::remove(c_file, ignored);
-  if (ok) std::filesystem::rename(so_file, path, ignored);
-  if (!ok || ignored) std::filesystem::remove(so_file, ignored);
+  std::error_code error;
+  std::filesystem::remove(c_file, error);
+  if (ok) std::filesystem::rename(so_file, path, error);  // atomic: readers see the old entry or the new
+  ok = ok && !error;
+  if (!ok) std::filesystem::remove(so_file, error);
   return ok && entry_valid(path, key);
 }
 
