@@ -86,10 +86,18 @@ void check_native(const Formula& tape, const Formula& native, double x, double y
       fail("native code differs from the tape", text);
 }
 
-// a fresh cache folder per fuzzer process, so each compiled input is built
+// a fresh cache folder per fuzzer process, so each compiled input is built;
+// removed when the fuzzer exits
+std::string fuzz_cache_dir() {
+  return (std::filesystem::temp_directory_path() / ("rb_fuzz_native_" + std::to_string(getpid()))).string();
+}
 NativeSettings fuzz_native_settings() {
   NativeSettings s;
-  s.cache_dir = (std::filesystem::temp_directory_path() / ("rb_fuzz_native_" + std::to_string(getpid()))).string();
+  s.cache_dir = fuzz_cache_dir();
+  std::atexit([] {
+    std::error_code ignored;
+    std::filesystem::remove_all(fuzz_cache_dir(), ignored);
+  });
   return s;
 }
 

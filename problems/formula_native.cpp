@@ -139,7 +139,6 @@ bool build_entry(const std::filesystem::path& path, const std::string& source, c
   const std::string stem = path.string() + ".tmp." + std::to_string(getpid()) + "." +
                            std::to_string(unique_counter.fetch_add(1));
   const std::string c_file = stem + ".c", so_file = stem + ".so";
-  std::error_code ignored;
   bool ok = false;
   {
     std::ofstream out(c_file, std::ios::binary);
@@ -157,9 +156,11 @@ bool build_entry(const std::filesystem::path& path, const std::string& source, c
     std::ofstream out(so_file, std::ios::binary | std::ios::app);
     ok = !object.empty() && static_cast<bool>(out << trailer(object, key)) && static_cast<bool>(out.flush());
   }
-  std::filesystem::remove(c_file, ignored);
-  if (ok) std::filesystem::rename(so_file, path, ignored);
-  if (!ok || ignored) std::filesystem::remove(so_file, ignored);
+  std::error_code error;
+  std::filesystem::remove(c_file, error);
+  if (ok) std::filesystem::rename(so_file, path, error);  // atomic: readers see the old entry or the new
+  ok = ok && !error;
+  if (!ok) std::filesystem::remove(so_file, error);
   return ok && entry_valid(path, key);
 }
 
@@ -204,8 +205,10 @@ std::filesystem::path default_cache_dir() {
 const NativeSettings& NativeSettings::from_environment() {
   static const NativeSettings settings = [] {
     NativeSettings s;
-    const char* mode = std::getenv("RB_NATIVE_FORMULA");
-    s.enabled = !(mode && std::string(mode) == "off");
+    // anything but unset, "on" or "off" is a mistake: the tape, and the one line says so
+    const std::string mode = std::getenv("RB_NATIVE_FORMULA") ? std::getenv("RB_NATIVE_FORMULA") : "";
+    s.enabled = mode.empty() || mode == "on";
+    if (!s.enabled && mode != "off") s.refusal = "RB_NATIVE_FORMULA='" + mode + "' is neither on nor off";
     if (const char* cc = std::getenv("RB_NATIVE_CC"); cc && *cc) s.compiler = cc;
     const char* dir = std::getenv("RB_NATIVE_CACHE");
     s.cache_dir = dir && *dir ? std::string(dir) : default_cache_dir().string();
@@ -215,7 +218,8 @@ const NativeSettings& NativeSettings::from_environment() {
 }
 
 NativeResult compile_native(const FormulaTape& tape, const NativeSettings& settings) {
-  if (!settings.enabled) return {{}, NativeOutcome::disabled, "RB_NATIVE_FORMULA=off"};
+  if (!settings.enabled)
+    return {{}, NativeOutcome::disabled, settings.refusal.empty() ? "RB_NATIVE_FORMULA=off" : settings.refusal};
   if (!tape.usable()) return {{}, NativeOutcome::unavailable, "the formula is too long to lower"};
   const std::filesystem::path folder = settings.cache_dir;
   std::error_code error;
@@ -264,7 +268,7 @@ bool Formula::compile_native() {
     static std::atomic<bool> said{false};
     if (!said.exchange(true))
       std::fprintf(stderr, "rollbench: landscape formulas run on the tape, not as native code (%s)\n",
-                   result.outcome == NativeOutcome::disabled ? "RB_NATIVE_FORMULA=off" : result.why.c_str());
+                   result.why.c_str());
   }
   return is_native();
 }

@@ -4,7 +4,9 @@
 // object, cached on disk and loaded with dlopen (formula_native.cpp).
 //
 // Settings, read from the environment once per process:
-//   RB_NATIVE_FORMULA=off   keep the tape (tests and fuzzers use it)
+//   RB_NATIVE_FORMULA=off   keep the tape (tests and fuzzers use it); on or
+//                           unset: native code; anything else keeps the tape
+//                           and the one line names the mistake
 //   RB_NATIVE_CC            the C compiler (default: cc on the PATH)
 //   RB_NATIVE_CACHE         the cache folder (default:
 //                           $XDG_CACHE_HOME/rollbench, else ~/.cache/rollbench)
@@ -34,6 +36,7 @@ struct NativeSettings {
   bool enabled = true;
   std::string compiler = "cc";
   std::string cache_dir;
+  std::string refusal;  // why enabled is false, when not RB_NATIVE_FORMULA=off
   static const NativeSettings& from_environment();
 };
 
@@ -43,7 +46,7 @@ enum class NativeOutcome { cached, built, disabled, unavailable };
 struct NativeResult {
   NativeFormula code;     // empty unless cached or built
   NativeOutcome outcome;
-  std::string why;        // for unavailable: what went wrong
+  std::string why;        // for disabled and unavailable: why, for the one line
 };
 
 // The native code for a usable tape (tape.usable()); never throws.
