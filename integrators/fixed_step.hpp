@@ -155,7 +155,8 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
         ModelMargins margins;
         step(std::as_const(*y), *next, t, h, run.cost, margins);
         ++run.cost.validity_checks;
-        if (const Validity v = problem.check_model(margins); v.status != Status::ok) return stop_model(v);
+        if (!problem.within_model(margins)) [[unlikely]]
+          return stop_model(problem.check_model(margins));
       } else if constexpr (writes_next) {
         step(std::as_const(*y), *next, t, h, run.cost);
       } else {

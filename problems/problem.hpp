@@ -5,6 +5,7 @@
 //
 // A Problem is immutable and shared read-only by every run and thread; runs
 // keep their own counters.
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -48,6 +49,8 @@ struct Validity {
 };
 
 class Problem {
+  static constexpr double kHuge = std::numeric_limits<double>::infinity();
+
  public:
   Problem(std::string name, RollingBall model, FlatState y0, double t_end, Domain domain = {},
           std::shared_ptr<const ExactSolution> exact = nullptr)
@@ -82,6 +85,19 @@ class Problem {
   // (F . N <= 0), curvature (r max kappa >= 1 or E singular), a non-finite
   // landscape.
   Validity check_model(const ModelMargins& margins) const;
+  // Whether check_model would say ok, as one branch-free test: the drivers
+  // ask this every step and check_model only for the reason of a stop.
+  bool within_model(const ModelMargins& m) const {
+    // r max(k1, k2) < 1 exactly when (1 - r k1) + (1 - r k2) > 0 and
+    // (1 - r k1)(1 - r k2) > 0; NaN fails every comparison
+    const double r = model_.params().radius;
+    const double sum = 1.0 - r * m.mean_curvature;
+    const double product = 1.0 - 2.0 * r * m.mean_curvature + r * r * m.gauss_curvature;
+    return (sum > 0.0) & (product > 0.0) & (m.det_E > 1e-12) & (m.normal_force > 0.0) &
+           (std::abs(m.normal_force) < kHuge) & (std::abs(m.det_E) < kHuge) & (std::abs(m.gauss_curvature) < kHuge) &
+           (std::abs(m.mean_curvature) < kHuge);
+  }
+
   // Every check of MODEL.md at one state: check_step, then check_model
   // from one evaluation at y (for states no stage evaluates).
   Validity check_full(const FlatState& y) const;

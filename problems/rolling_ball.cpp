@@ -14,6 +14,7 @@ RollingBall::RollingBall(Landscape landscape, BallParams params)
     : landscape_(std::move(landscape)), p_(params) {
   const double mr2 = p_.mass * p_.radius * p_.radius;
   const Vec3* I = p_.inertia ? &*p_.inertia : nullptr;
+  general_ = I != nullptr;
   anisotropic_ = I && !((*I)[0] == (*I)[1] && (*I)[1] == (*I)[2]);
   if (anisotropic_) {
     inv_d_ = (I->array() + mr2).inverse().matrix();

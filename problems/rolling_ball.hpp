@@ -89,21 +89,34 @@ class RollingBall {
   bool anisotropic() const { return anisotropic_; }
 
   // The equations of motion at orientation R and z = (v, alpha); R is read
-  // as R(i, j) and only for an anisotropic ball. Always inlined, so that in
-  // lie_rhs and flat_rhs the parts they do not return are never stored.
-  template <class T, class Rot>
+  // as R(i, j) and only for an anisotropic ball. General = false is the
+  // homogeneous ball's code with its constants; true serves a scene with
+  // inertia (equal moments or not). Always inlined, so that in lie_rhs and
+  // flat_rhs the parts they do not return are never stored.
+  template <bool General, class T, class Rot>
   [[gnu::always_inline]] inline Kinematics<T> kinematics(const Rot& R, const T* z) const;
+  // The same, choosing General from the ball (for code off the hot path).
+  template <class T, class Rot>
+  Kinematics<T> kinematics(const Rot& R, const T* z) const {
+    return general_ ? kinematics<true>(R, z) : kinematics<false>(R, z);
+  }
 
   // Lie-group view: omega(R, z) and G(R, z) = (v', alpha') in one pass.
-  // z and dz hold kZSize numbers; omega 3.
+  // z and dz hold kZSize numbers; omega 3. A ball with inertia takes an
+  // out-of-line copy, so that the homogeneous ball's inlined code is what
+  // it was before there were others.
   template <class T>
   [[gnu::always_inline]] void lie_rhs(const Mat3& R, const T* z, T* omega, T* dz) const {
-    store_lie(kinematics(R, z), omega, dz);
+    if (general_) [[unlikely]]
+      return lie_rhs_general(R, z, omega, dz);
+    store_lie(kinematics<false>(R, z), omega, dz);
   }
   // The same, also filling the validity margins at (R, z).
   [[gnu::always_inline]] void lie_rhs(const Mat3& R, const double* z, double* omega, double* dz,
                                       ModelMargins& margins) const {
-    const Kinematics<double> k = kinematics(R, z);
+    if (general_) [[unlikely]]
+      return lie_rhs_general(R, z, omega, dz, margins);
+    const Kinematics<double> k = kinematics<false>(R, z);
     store_lie(k, omega, dz);
     margins = margins_of(k);
   }
@@ -111,11 +124,15 @@ class RollingBall {
   // Flat view: y' = F(y) for y in R^14 (R row-major, v, alpha); R' = hat(omega) R.
   template <class T>
   [[gnu::always_inline]] void flat_rhs(const T* y, T* dy) const {
-    store_flat(kinematics(RowMajorRotation<T>{y + kOffsetR}, y + kOffsetV), y, dy);
+    if (general_) [[unlikely]]
+      return flat_rhs_general(y, dy);
+    store_flat(kinematics<false>(RowMajorRotation<T>{y + kOffsetR}, y + kOffsetV), y, dy);
   }
   // The same, also filling the validity margins at y.
   [[gnu::always_inline]] void flat_rhs(const double* y, double* dy, ModelMargins& margins) const {
-    const Kinematics<double> k = kinematics(RowMajorRotation<double>{y + kOffsetR}, y + kOffsetV);
+    if (general_) [[unlikely]]
+      return flat_rhs_general(y, dy, margins);
+    const Kinematics<double> k = kinematics<false>(RowMajorRotation<double>{y + kOffsetR}, y + kOffsetV);
     store_flat(k, y, dy);
     margins = margins_of(k);
   }
@@ -139,6 +156,27 @@ class RollingBall {
   Derived derived(const FlatState& y) const;
 
  private:
+  // the out-of-line copies for a ball with inertia
+  template <class T>
+  [[gnu::noinline]] void lie_rhs_general(const Mat3& R, const T* z, T* omega, T* dz) const {
+    store_lie(kinematics<true>(R, z), omega, dz);
+  }
+  [[gnu::noinline]] void lie_rhs_general(const Mat3& R, const double* z, double* omega, double* dz,
+                                         ModelMargins& margins) const {
+    const Kinematics<double> k = kinematics<true>(R, z);
+    store_lie(k, omega, dz);
+    margins = margins_of(k);
+  }
+  template <class T>
+  [[gnu::noinline]] void flat_rhs_general(const T* y, T* dy) const {
+    store_flat(kinematics<true>(RowMajorRotation<T>{y + kOffsetR}, y + kOffsetV), y, dy);
+  }
+  [[gnu::noinline]] void flat_rhs_general(const double* y, double* dy, ModelMargins& margins) const {
+    const Kinematics<double> k = kinematics<true>(RowMajorRotation<double>{y + kOffsetR}, y + kOffsetV);
+    store_flat(k, y, dy);
+    margins = margins_of(k);
+  }
+
   template <class T>
   [[gnu::always_inline]] static void store_lie(const Kinematics<T>& k, T* omega, T* dz) {
     for (int i = 0; i < 3; ++i) omega[i] = k.omega[i];
@@ -169,13 +207,13 @@ class RollingBall {
   // omega = T^-1 v for the anisotropic ball by Sherman-Morrison (MODEL.md):
   // in the body frame, with d = 1 / (Theta + m r^2), n = R^T N, b = R^T v,
   // omega = R (d b + m r^2 (d n . b) / (1 - m r^2 n . d n) d n).
-  // Kept out of line: the homogeneous path stays as it was.
   template <class T, class Rot>
-  [[gnu::noinline]] void anisotropic_omega(const Rot& R, const T (&N)[3], const T* v, T (&w)[3]) const;
+  void anisotropic_omega(const Rot& R, const T (&N)[3], const T* v, T (&w)[3]) const;
 
   Landscape landscape_;
   BallParams p_;
-  bool anisotropic_ = false;
+  bool general_ = false;      // inertia given: the general code path
+  bool anisotropic_ = false;  // and the moments are not all equal
   Vec3 inv_d_ = Vec3::Zero();  // 1 / (I_k + m r^2), anisotropic ball only
   double theta_ = 0.0;         // the moment of a ball with equal ones
   double iso_scale_ = 0.0;     // s and c of T^-1 for equal moments (see kinematics)
@@ -224,7 +262,7 @@ void RollingBall::anisotropic_omega(const Rot& R, const T (&N)[3], const T* v, T
 // path of every integrator, and scalar code lets the compiler keep the whole
 // state in registers (Eigen's fixed-size temporaries cost about a third more
 // per evaluation here).
-template <class T, class Rot>
+template <bool General, class T, class Rot>
 Kinematics<T> RollingBall::kinematics(const Rot& R, const T* z) const {
   using std::sqrt;
   Kinematics<T> k;
@@ -251,7 +289,11 @@ Kinematics<T> RollingBall::kinematics(const Rot& R, const T* z) const {
   // omega = T^-1 v; for equal moments theta: (v + c N (N . v)) s with
   // s = 1 / (theta + m r^2), c = m r^2 / theta (homogeneous: s = (5/7) / (m r^2), c = 5/2)
   T w0, w1, w2;
-  if (anisotropic_) [[unlikely]] {
+  if constexpr (!General) {
+    const double s = (5.0 / 7.0) / (m * r * r);
+    const T Nv = 2.5 * (N0 * z[0] + N1 * z[1] + N2 * z[2]);
+    w0 = (z[0] + N0 * Nv) * s, w1 = (z[1] + N1 * Nv) * s, w2 = (z[2] + N2 * Nv) * s;
+  } else if (anisotropic_) {
     T w[3];
     anisotropic_omega(R, {N0, N1, N2}, z, w);
     w0 = w[0], w1 = w[1], w2 = w[2];
