@@ -24,8 +24,8 @@ def _colour_ticklabels(ax, names, palette):
 def _largest_stable_panel(ax, entries, palette):
     names = rp.integrators(entries)
     scenes = rp.unique(e["scene"] for e in entries)
-    known = [rp.num(e.get("h_stable")) for e in entries if math.isfinite(rp.num(e.get("h_stable")))]
-    tried = [rp.num(t) for e in entries for t in (e.get("h_tested") or [])]
+    known = [rp.stable_h(e) for e in entries if math.isfinite(rp.stable_h(e))]
+    tried = [t for e in entries for t in rp.tested_h(e)]
     smallest = min([h for h in known + tried if math.isfinite(h) and h > 0] or [1e-3])
     none_x = smallest / 4  # where "no stable step found" is drawn, left of every real step
     offsets = np.linspace(-0.25, 0.25, len(scenes)) if len(scenes) > 1 else [0.0]
@@ -33,7 +33,7 @@ def _largest_stable_panel(ax, entries, palette):
         marker = SCENE_MARKERS[j % len(SCENE_MARKERS)]
         for e in (e for e in entries if e["scene"] == scene):
             y = names.index(e["integrator"]) + offsets[j]
-            h = rp.num(e.get("h_stable"))
+            h = rp.stable_h(e)
             colour = palette.colour(e["integrator"])
             if math.isfinite(h):
                 ax.plot([h], [y], marker=marker, color=colour, markersize=7, linestyle="none")

@@ -31,7 +31,7 @@ REQUIRED = {
     "orders": ("scene", "integrator"),
     "references": ("scene",),
     "stability.drift": ("scene", "integrator", "t"),
-    "stability.largest_stable_h": ("scene", "integrator", "h_stable"),
+    "stability.largest_stable_h": ("scene", "integrator", "h", "tried"),
     "tolerance_fits": ("scene", "integrator", "slope"),
 }
 
@@ -125,6 +125,16 @@ def drift_runs(report, scene=None):
 
 def stable_steps(report):
     return section_entries(report, "stability.largest_stable_h")
+
+
+def stable_h(entry):
+    """The largest stable step of a stability entry (NaN when none passes)."""
+    return num(entry.get("h"))
+
+
+def tested_h(entry):
+    """Every step the stability study tried for this entry."""
+    return [num(t.get("h")) for t in entry.get("tried") or []]
 
 
 def scenes(report):

@@ -86,8 +86,8 @@ def stability_section(report):
               "beside it and is not a pass criterion.", ""]
     rows = []
     for e in entries:
-        h = rp.num(e.get("h_stable"))
-        tested = [rp.num(t) for t in e.get("h_tested") or []]
+        h = rp.stable_h(e)
+        tested = rp.tested_h(e)
         tested = [t for t in tested if math.isfinite(t)]
         span = f"{min(tested):.3g} – {max(tested):.3g} ({len(tested)})" if tested else "—"
         rows.append([e["scene"], e["integrator"], md.fmt(h) if math.isfinite(h) else "none",

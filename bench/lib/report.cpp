@@ -107,7 +107,7 @@ json run_json(const RunRecord& r, const std::string& reference_kind) {
           {"status", std::string(status_name(r.status))}, {"message", r.message}, {"stop_time", r.stop_time},
           {"steps", r.cost.steps}, {"rejected", r.cost.rejected}, {"rhs_evals", r.cost.rhs_evals},
           {"jacobian_evals", r.cost.jacobian_evals}, {"exp_evals", r.cost.exp_evals},
-          {"dexpinv_evals", r.cost.dexpinv_evals},
+          {"dexpinv_evals", r.cost.dexpinv_evals}, {"validity_checks", r.cost.validity_checks},
           {"wall_s",
            {{"median", number(median(samples))},
             {"min", number(samples.empty() ? kNaN : *std::min_element(samples.begin(), samples.end()))},
@@ -243,7 +243,7 @@ json fit_orders(const json& runs, const json& references) {
     }
     orders.push_back({{"scene", key.first}, {"integrator", key.second}, {"declared", first.at("declared_order")},
                       {"declared_rotation", first.at("declared_rotation_order")}, {"observed", observed},
-                      {"ci95", ci95}, {"fit", fits["contact"]}, {"fits", fits}, {"verdicts", verdicts},
+                      {"ci95", ci95}, {"fit", fits["contact"]}, {"fits", fits}, {"verdict", verdicts},
                       {"pass", lower ? json(false) : all_as_declared ? json(true) : json(nullptr)}});
   }
   return orders;

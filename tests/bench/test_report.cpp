@@ -2,6 +2,8 @@
 // observed orders, its references, failures as data, and sharding.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <map>
 #include <tuple>
 
 #include "bench/lib/report.hpp"
@@ -82,6 +84,28 @@ double observed(const json& report, const std::string& scene, const std::string&
   return -1.0;
 }
 
+// The timed call's validity checks are part of its work: every method
+// checks each accepted state and the start once, so two methods with the
+// same steps on the same outputs carry the same number of checks.
+TEST(Report, TimedRunsCountTheirValidityChecksAlike) {
+  std::map<std::tuple<std::string, double>, std::vector<long>> checks_by_scene_and_h;
+  for (const json& run : quick_report()["runs"]) {
+    ASSERT_TRUE(run.contains("validity_checks")) << run["integrator"];
+    if (run["status"] != "ok") continue;
+    const long steps = run["steps"].get<long>();
+    EXPECT_EQ(run["validity_checks"].get<long>(), steps + 1) << run["scene"] << " " << run["integrator"];
+    if (!run["adaptive"].get<bool>())
+      checks_by_scene_and_h[{run["scene"].get<std::string>(), run["h"].get<double>()}].push_back(
+          run["validity_checks"].get<long>());
+  }
+  ASSERT_FALSE(checks_by_scene_and_h.empty());
+  for (const auto& [key, checks] : checks_by_scene_and_h) {
+    ASSERT_GE(checks.size(), 2u);
+    EXPECT_EQ(*std::min_element(checks.begin(), checks.end()), *std::max_element(checks.begin(), checks.end()))
+        << std::get<0>(key) << " h = " << std::get<1>(key);
+  }
+}
+
 TEST(Report, ObservedOrdersOfTheQuickPreset) {
   const json& r = quick_report();
   struct Expect { const char* method; const char* component; double order; };
@@ -92,11 +116,11 @@ TEST(Report, ObservedOrdersOfTheQuickPreset) {
     EXPECT_NEAR(observed(r, "valley-sideways", e.method, e.component), e.order, 0.2) << e.method << " " << e.component;
   // every verdict is one of three, and a clean fourth-order method's are as declared
   for (const json& o : r["orders"])
-    for (const auto& [component, verdict] : o["verdicts"].items())
+    for (const auto& [component, verdict] : o["verdict"].items())
       EXPECT_TRUE(verdict == "as declared" || verdict == "lower" || verdict == "inconclusive") << verdict;
   for (const json& o : r["orders"])
     if (o["scene"] == "valley-sideways" && (o["integrator"] == "rkmk4" || o["integrator"] == "rkmk4-seminar")) {
-      EXPECT_EQ(o["verdicts"]["rotation"], "as declared") << o["integrator"] << ": " << o["ci95"].dump();
+      EXPECT_EQ(o["verdict"]["rotation"], "as declared") << o["integrator"] << ": " << o["ci95"].dump();
       EXPECT_EQ(o["pass"], true) << o["integrator"];
     }
 }
