@@ -133,8 +133,8 @@ json timed_call(const SweepSpec& spec) {
   return {{"outputs", outputs},
           {"contains",
            "one integrate() call from t = 0 to t_end recording the outputs above: every step with its rhs "
-           "evaluations and the driver's validity check of each accepted step, a full check at each recorded output, "
-           "and copying the recorded states; not the untimed warm-up call before it, not the error measurement"},
+           "evaluations, the model's validity check of the start and of each accepted state (validity_checks), "
+           "the finiteness and domain check of each recorded output, and copying the recorded states; not the untimed warm-up call before it, not the error measurement"},
           {"error_max", "from an untimed run recording every multiple of error_dt (dt_out when given) up to t_end; "
                         "error_max_run.same_steps says whether it took the timed run's steps (fixed-step and "
                         "dense-output methods do; methods that land on each output do not)"}};
