@@ -78,11 +78,20 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   return r;
 }
 
+std::vector<std::unique_ptr<Integrator>>& mutable_registry() {
+  static std::vector<std::unique_ptr<Integrator>> all = make_registry();
+  return all;
+}
+
 }  // namespace
 
-const std::vector<std::unique_ptr<Integrator>>& registry() {
-  static const std::vector<std::unique_ptr<Integrator>> all = make_registry();
-  return all;
+const std::vector<std::unique_ptr<Integrator>>& registry() { return mutable_registry(); }
+
+void add_integrator(std::unique_ptr<Integrator> integrator, const std::string& key) {
+  for (const auto& existing : registry())
+    if (existing->name() == integrator->name())
+      throw InputError("integrator '" + integrator->name() + "' is already registered", key);
+  mutable_registry().push_back(std::move(integrator));
 }
 
 const Integrator& find_integrator(std::string_view name) {
