@@ -9,6 +9,8 @@
 #include <sstream>
 
 #include "bench/lib/report.hpp"
+#include "bench/lib/score.hpp"
+#include "bench/lib/stepper_option.hpp"
 #include "bench/lib/trajectory_csv.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
@@ -218,6 +220,27 @@ int run_sweep_command(const RunArgs& a) {
   return 0;
 }
 
+struct ScoreArgs {
+  std::string scene, csv, out;
+  rb::ScoreOptions options;
+};
+
+// A trajectory from another program scored against the suite's reference.
+int run_score(const ScoreArgs& a) {
+  std::ifstream csv(a.csv);
+  if (!csv) throw rb::InputError("cannot open '" + a.csv + "' for reading", "trajectory");
+  const nlohmann::json score = rb::score_trajectory(a.scene, csv, a.csv, a.options);
+  if (a.out.empty()) {
+    std::printf("%s\n", score.dump(1).c_str());
+  } else {
+    write_json(score, a.out);
+    std::printf("score of %s on %s written to %s\n", a.csv.c_str(), a.scene.c_str(), a.out.c_str());
+  }
+  std::fprintf(stderr, "rollbench: timing is the user's: score measures accuracy and drift only (status %s)\n",
+               score["status"].get<std::string>().c_str());
+  return 0;
+}
+
 int run_merge(const std::vector<std::string>& inputs, const std::string& out) {
   std::vector<nlohmann::json> shards;
   for (const std::string& path : inputs) shards.push_back(rb::read_report(path));
@@ -232,7 +255,11 @@ int main(int argc, char** argv) {
   CLI::App app{"rollbench: integrators compared on a ball rolling on z = f(x, y)"};
   app.require_subcommand(1);
 
-  app.add_subcommand("list", "list the registered integrators and the shipped scenes");
+  CLI::App* list = app.add_subcommand("list", "list the registered integrators and the shipped scenes");
+  // --stepper PATH.so (repeatable): a stepper library (integrators/plugin/rollbench_stepper.h)
+  std::vector<std::string> steppers;
+  const char* stepper_help = "a stepper library built against integrators/plugin/rollbench_stepper.h (repeatable)";
+  list->add_option("--stepper", steppers, stepper_help);
 
   TrajectoryArgs traj;
   CLI::App* trajectory = app.add_subcommand("trajectory", "integrate one scene with one method and write a CSV");
@@ -244,6 +271,7 @@ int main(int argc, char** argv) {
   trajectory->add_option("--dt-out", traj.dt_out, "spacing of the output rows, >= h (default: the larger of 0.01 and h)");
   trajectory->add_option("--t-end", traj.t_end, "end time (default: the scene's t_end)");
   trajectory->add_option("--out", traj.out, "the CSV file to write")->required();
+  trajectory->add_option("--stepper", steppers, stepper_help);
 
   LandscapeArgs land;
   CLI::App* landscape = app.add_subcommand("landscape", "print z = f(x, y) of a scene on a grid (CSV x,y,z)");
@@ -268,12 +296,26 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--cache", run.cache, "directory for cached reference solutions");
   run_cmd->add_flag("--no-stability", run.no_stability, "skip the stability study of the preset");
   run_cmd->add_option("--out", run.out, "the report to write")->required();
+  run_cmd->add_option("--stepper", steppers, stepper_help);
 
   std::vector<std::string> merge_inputs;
   std::string merge_out;
   CLI::App* merge = app.add_subcommand("merge", "join shard reports into one");
   merge->add_option("reports", merge_inputs, "shard reports")->required();
   merge->add_option("--out", merge_out, "the merged report")->required();
+
+  ScoreArgs score;
+  CLI::App* score_cmd =
+      app.add_subcommand("score", "accuracy and drift of another program's trajectory CSV against the suite's reference");
+  score_cmd->add_option("scene", score.scene, "a shipped scene's name or a scene JSON file")->required();
+  score_cmd->add_option("trajectory", score.csv, "the trajectory CSV (the columns `rollbench trajectory` writes)")
+      ->required();
+  score_cmd->add_option("--t-end", score.options.t_end, "end time, as the run's (default: the scene's t_end)")
+      ->check(CLI::PositiveNumber);
+  score_cmd->add_option("--dt-out", score.options.dt_out, "spacing of the output times, as the run's --dt-out (default: the runner's 0.25)")
+      ->check(CLI::PositiveNumber);
+  score_cmd->add_option("--cache", score.options.cache_dir, "directory for cached reference solutions");
+  score_cmd->add_option("--out", score.out, "write the JSON here instead of standard output");
 
   try {
     app.parse(argc, argv);
@@ -285,11 +327,13 @@ int main(int argc, char** argv) {
   }
 
   try {
+    rb::register_plugin_steppers(steppers);
     if (app.got_subcommand("list")) return run_list();
     if (app.got_subcommand("trajectory")) return run_trajectory(traj);
     if (app.got_subcommand("landscape")) return run_landscape(land);
     if (app.got_subcommand("run")) return run_sweep_command(run);
     if (app.got_subcommand("merge")) return run_merge(merge_inputs, merge_out);
+    if (app.got_subcommand("score")) return run_score(score);
   } catch (const rb::InputError& e) {
     std::fprintf(stderr, "rollbench: %s\n", e.what());
     return 2;

@@ -91,11 +91,15 @@ json options_of(const SweepSpec& s) {
             {"search_t_end", st.search_t_end}, {"energy_fraction", st.energy_fraction}}}};
 }
 
+}  // namespace
+
 json errors_json(const RunErrors& e, const std::string& reference_kind) {
   return {{"reference", reference_kind}, {"contact", number(e.contact)}, {"centre", number(e.centre)},
           {"omega", number(e.omega)}, {"rotation", number(e.rotation)}, {"worst", number(e.worst)},
           {"floor", e.floor}, {"below_floor", e.below_floor}, {"points", e.points}};
 }
+
+namespace {
 
 json run_json(const RunRecord& r, const std::string& reference_kind) {
   std::vector<double> samples = r.wall_samples;

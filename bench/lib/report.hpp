@@ -17,6 +17,10 @@ inline constexpr const char* kReportSchema = "rollbench.report/2";
 nlohmann::json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes,
                            const std::vector<RunRecord>& runs, const StabilityResults& stability);
 
+// A run's "error" or "error_max" object: the components, worst, the floor
+// and what lies below it, the points measured, and the reference's kind.
+nlohmann::json errors_json(const RunErrors& errors, const std::string& reference_kind);
+
 // The "orders" entries for the runs of a report: per (scene, integrator) of a
 // fixed-step method, the slope of log error on log h per component with its
 // 95 % interval, a verdict per component (order_verdict: "as declared",

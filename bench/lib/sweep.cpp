@@ -99,6 +99,8 @@ bool reached_end(const SweepScene& s, const RunResult& run) {
          run.output.t.back() == s.reference.t.back();
 }
 
+}  // namespace
+
 // Errors at t_end of the run that is timed.
 void measure_end(const SweepScene& s, const RunResult& run, RunRecord& r) {
   r.error.floor = s.reference.error;
@@ -144,6 +146,8 @@ void measure_grid(const SweepScene& s, const RunResult& run, RunRecord& r) {
   }
   store(r.error_max, largest, s.reference.error, points);
 }
+
+namespace {
 
 RunResult integrate_safely(const Integrator& m, const Problem& problem, const RunOptions& o) {
   try {

@@ -103,6 +103,16 @@ std::size_t output_count(const Problem& problem, const RunOptions& options);
 // once more recording it (error_max, drift).
 RunRecord run_task(const SweepScene& scene, const SweepTask& task, long max_steps);
 
+// The errors at t_end of a run against the scene's reference (record.error,
+// its scd): none unless the run reached t_end. rollbench score measures a
+// trajectory from another program with it too.
+void measure_end(const SweepScene& scene, const RunResult& run, RunRecord& record);
+
+// The largest errors over the error grid (record.error_max) and the drift
+// (energy, rotation defect) over the run's outputs, every one of which is a
+// time of scene.times; errors only when the run reached t_end.
+void measure_grid(const SweepScene& scene, const RunResult& run, RunRecord& record);
+
 // Runs every task (accuracy in parallel, timing serially). progress(done,
 // total, phase) is called from the calling thread now and then.
 std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepScene>& scenes,

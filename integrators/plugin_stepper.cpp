@@ -1,0 +1,172 @@
+#include "integrators/plugin_stepper.hpp"
+
+#include <dlfcn.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+
+#include "integrators/fixed_step.hpp"
+#include "problems/input_error.hpp"
+#include "problems/so3.hpp"
+
+namespace rb {
+
+namespace {
+
+using AbiVersionFn = unsigned (*)();
+using InfoFn = const struct rollbench_stepper_info* (*)();
+using StepFn = int (*)(const rollbench_problem*, double, double, const double*, double*, char*, size_t);
+
+// the callbacks: evaluate through the Problem and count like a built-in step
+void flat_rhs_callback(void* c, const double* y, double* dy) {
+  auto& context = *static_cast<PluginCallContext*>(c);
+  context.problem->flat_rhs(y, dy);
+  ++context.cost->rhs_evals;
+}
+
+void lie_rhs_callback(void* c, const double* R, const double* z, double* omega, double* dz) {
+  auto& context = *static_cast<PluginCallContext*>(c);
+  context.problem->lie_rhs(Mat3(Eigen::Map<const RowMajorMat3>(R)), z, omega, dz);
+  ++context.cost->rhs_evals;
+}
+
+void so3_exp_callback(void* c, const double* u, double* R) {
+  auto& context = *static_cast<PluginCallContext*>(c);
+  Eigen::Map<RowMajorMat3> rotation(R);
+  rotation = so3_exp(Eigen::Map<const Vec3>(u));
+  ++context.cost->exp_evals;
+}
+
+void so3_dexpinv_callback(void* c, const double* u, const double* w, double* out) {
+  auto& context = *static_cast<PluginCallContext*>(c);
+  Eigen::Map<Vec3> result(out);
+  result = dexpinv(Eigen::Map<const Vec3>(u), Eigen::Map<const Vec3>(w));
+  ++context.cost->dexpinv_evals;
+}
+
+// The facts the library declares, copied out of its storage.
+struct PluginFacts {
+  std::string name, family, description;
+  int order = 0;
+  int view = ROLLBENCH_VIEW_FLAT;
+};
+
+class PluginStepper final : public Integrator {
+ public:
+  PluginStepper(PluginFacts facts, StepFn step, std::string path)
+      : facts_(std::move(facts)), step_(step), path_(std::move(path)) {}
+
+  std::string name() const override { return facts_.name; }
+  std::string family() const override { return facts_.family; }
+  int declared_order() const override { return facts_.order; }
+  std::string description() const override {
+    const char* view = facts_.view == ROLLBENCH_VIEW_LIE ? "Lie-group view" : "flat view";
+    return facts_.description + " (plug-in, " + view + ", " + path_ + ")";
+  }
+
+  RunResult integrate(const Problem& problem, const RunOptions& options) const override {
+    PluginCallContext context{&problem, nullptr};
+    const rollbench_problem callbacks = plugin_callbacks(context);
+    char message[512];
+    std::string failure;  // the plug-in's error, when it returned one
+    auto step = [&](const FlatState& y, FlatState& next, double t, double h, Cost& cost) {
+      context.cost = &cost;
+      message[0] = '\0';
+      const int code = step_(&callbacks, t, h, y.data(), next.data(), message, sizeof message);
+      if (code != 0) [[unlikely]] {
+        message[sizeof message - 1] = '\0';
+        char at[48];
+        std::snprintf(at, sizeof at, " at t = %.9g", t);
+        failure = "stepper '" + facts_.name + "' returned error code " + std::to_string(code) + at +
+                  (message[0] != '\0' ? std::string(": ") + message : std::string());
+        // a non-finite state stops the driver right here, at the last valid state
+        next.setConstant(std::numeric_limits<double>::quiet_NaN());
+      }
+    };
+    RunResult run = drive_fixed_step(problem, options, step);
+    if (!failure.empty()) {
+      run.status = Status::error;
+      run.message = failure;
+    }
+    return run;
+  }
+
+ private:
+  PluginFacts facts_;
+  StepFn step_;
+  std::string path_;
+};
+
+bool is_name_character(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '.' || c == '_' ||
+         c == '+' || c == '-';
+}
+
+// The library's facts, checked; where names the file and the symbol.
+PluginFacts checked_facts(const struct rollbench_stepper_info* info, const std::string& where) {
+  auto refuse = [&](const std::string& why) { throw InputError(where + ": " + why, "stepper"); };
+  if (info == nullptr) refuse("returned NULL");
+  PluginFacts facts;
+  if (info->name == nullptr || info->name[0] == '\0') refuse("the name is empty");
+  facts.name = info->name;
+  for (const char c : facts.name)
+    if (!is_name_character(c))
+      refuse("the name '" + facts.name + "' may hold only letters, digits and . _ + -");
+  if (info->family == nullptr || info->family[0] == '\0') refuse("the family of '" + facts.name + "' is empty");
+  facts.family = info->family;
+  if (info->order < 1) refuse("the order of '" + facts.name + "' is " + std::to_string(info->order) + ", not >= 1");
+  facts.order = info->order;
+  if (info->view != ROLLBENCH_VIEW_FLAT && info->view != ROLLBENCH_VIEW_LIE)
+    refuse("the view of '" + facts.name + "' is " + std::to_string(info->view) +
+           ", not ROLLBENCH_VIEW_FLAT (0) or ROLLBENCH_VIEW_LIE (1)");
+  facts.view = info->view;
+  facts.description = info->description != nullptr ? info->description : "";
+  return facts;
+}
+
+}  // namespace
+
+rollbench_problem plugin_callbacks(PluginCallContext& context) {
+  return {&context, flat_rhs_callback, lie_rhs_callback, so3_exp_callback, so3_dexpinv_callback};
+}
+
+std::unique_ptr<Integrator> load_plugin_stepper(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw InputError("'" + path + "': no such file", "stepper");
+  // an absolute path: dlopen would search the library path for a bare name
+  const std::string absolute = fs::absolute(path, ec).string();
+  void* library = dlopen(absolute.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (library == nullptr) {
+    const char* why = dlerror();
+    throw InputError("'" + path + "' is not a shared library that can be loaded (" +
+                         (why != nullptr ? std::string(why) : std::string("dlopen failed")) + ")",
+                     "stepper");
+  }
+  try {
+    auto symbol = [&](const char* name) {
+      void* address = dlsym(library, name);
+      if (address == nullptr)
+        throw InputError("'" + path + "' does not export '" + name +
+                             "' (see integrators/plugin/rollbench_stepper.h)",
+                         "stepper");
+      return address;
+    };
+    const auto abi_version = reinterpret_cast<AbiVersionFn>(symbol("rollbench_stepper_abi_version"));
+    const auto info = reinterpret_cast<InfoFn>(symbol("rollbench_stepper_info"));
+    const auto step = reinterpret_cast<StepFn>(symbol("rollbench_stepper_step"));
+    if (const unsigned version = abi_version(); version != ROLLBENCH_STEPPER_ABI_VERSION)
+      throw InputError("'" + path + "': rollbench_stepper_abi_version() is " + std::to_string(version) +
+                           ", this rollbench takes " + std::to_string(ROLLBENCH_STEPPER_ABI_VERSION) +
+                           " (rebuild it against integrators/plugin/rollbench_stepper.h)",
+                       "stepper");
+    PluginFacts facts = checked_facts(info(), "'" + path + "': rollbench_stepper_info()");
+    return std::make_unique<PluginStepper>(std::move(facts), step, path);
+  } catch (...) {
+    dlclose(library);  // nothing of it was registered
+    throw;
+  }
+}
+
+}  // namespace rb

@@ -1,0 +1,169 @@
+// Steppers from outside the suite (integrators/plugin_stepper.hpp): the
+// example libraries of examples/ loaded as the CLI's --stepper does, without
+// registering them (the registry-wide tests see only the built-in methods).
+// A plug-in is driven like a built-in method: the explicit midpoint rule in C
+// gives the built-in `midpoint`'s numbers and counts exactly; a broken
+// library is refused naming the file and the symbol; a failing step is a
+// status.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "integrators/plugin_stepper.hpp"
+#include "integrators/registry.hpp"
+#include "problems/input_error.hpp"
+#include "problems/scene.hpp"
+#include "problems/so3.hpp"
+
+namespace rb {
+namespace {
+
+std::string library(const std::string& name) { return std::string(RB_STEPPER_DIR) + "/lib" + name + ".so"; }
+
+RunOptions every_quarter(double h, double t_end) {
+  RunOptions o;
+  o.h = h;
+  o.t_end = t_end;
+  for (int k = 1; 0.25 * k < t_end; ++k) o.output_times.push_back(0.25 * k);
+  return o;
+}
+
+std::string load_error(const std::string& path) {
+  try {
+    load_plugin_stepper(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(loaded)";
+}
+
+void expect_same_cost(const Cost& a, const Cost& b) {
+  EXPECT_EQ(a.steps, b.steps);
+  EXPECT_EQ(a.rejected, b.rejected);
+  EXPECT_EQ(a.rhs_evals, b.rhs_evals);
+  EXPECT_EQ(a.jacobian_evals, b.jacobian_evals);
+  EXPECT_EQ(a.validity_checks, b.validity_checks);
+}
+
+TEST(PluginStepper, TheExampleDeclaresItsFacts) {
+  const std::unique_ptr<Integrator> m = load_plugin_stepper(library("midpoint_stepper"));
+  EXPECT_EQ(m->name(), "midpoint-plugin");
+  EXPECT_EQ(m->family(), "plugin");
+  EXPECT_EQ(m->declared_order(), 2);
+  EXPECT_FALSE(m->adaptive());
+  EXPECT_EQ(m->description(), "explicit midpoint rule in C, loaded with --stepper (examples/midpoint_stepper.c) "
+                              "(plug-in, flat view, " + library("midpoint_stepper") + ")");
+}
+
+TEST(PluginStepper, GivesTheBuiltInMidpointsNumbersAndCounts) {
+  const std::unique_ptr<Integrator> plugin = load_plugin_stepper(library("midpoint_stepper"));
+  for (const char* scene : {"valley-sideways", "chaplygin-valley"}) {
+    const Problem problem = make_problem(load_scene(scene));
+    const RunOptions o = every_quarter(1.0 / 64.0, 2.0);
+    const RunResult a = plugin->integrate(problem, o);
+    const RunResult b = find_integrator("midpoint").integrate(problem, o);
+    ASSERT_EQ(a.status, Status::ok) << scene << ": " << a.message;
+    ASSERT_EQ(a.output.t, b.output.t);
+    for (std::size_t i = 0; i < a.output.y.size(); ++i)
+      for (int j = 0; j < kFlatSize; ++j) EXPECT_EQ(a.output.y[i][j], b.output.y[i][j]) << scene << " t = " << a.output.t[i];
+    expect_same_cost(a.cost, b.cost);
+    EXPECT_EQ(a.cost.rhs_evals, 2 * a.cost.steps);
+    EXPECT_EQ(a.cost.steps, 128);
+  }
+}
+
+TEST(PluginStepper, TheLieGroupExampleKeepsROnSo3AndCountsItsExponentials) {
+  const std::unique_ptr<Integrator> plugin = load_plugin_stepper(library("lie_euler_stepper"));
+  EXPECT_EQ(plugin->declared_order(), 1);
+  const Problem problem = make_problem(load_scene("chaplygin-valley"));  // R feeds back into the motion
+  const RunOptions o = every_quarter(1.0 / 256.0, 2.0);
+  const RunResult a = plugin->integrate(problem, o);
+  const RunResult b = find_integrator("exp-euler").integrate(problem, o);
+  ASSERT_EQ(a.status, Status::ok) << a.message;
+  EXPECT_EQ(a.cost.steps, 512);
+  EXPECT_EQ(a.cost.rhs_evals, a.cost.steps);
+  EXPECT_EQ(a.cost.exp_evals, a.cost.steps);
+  EXPECT_EQ(a.cost.dexpinv_evals, 0);
+  EXPECT_LT(rotation_defect(rotation_of(a.final_state)), 1e-13);
+  // the same method as the built-in exp-euler, up to the order of the sums
+  EXPECT_LT((a.final_state - b.final_state).lpNorm<Eigen::Infinity>(), 1e-12);
+}
+
+TEST(PluginStepper, TheCallbacksEvaluateTheProblemAndCountEachCall) {
+  const Problem problem = make_problem(load_scene("chaplygin-valley"));
+  Cost cost;
+  PluginCallContext context{&problem, &cost};
+  const rollbench_problem p = plugin_callbacks(context);
+  const FlatState y = problem.y0();
+  FlatState dy, expected_dy;
+  p.flat_rhs(p.context, y.data(), dy.data());
+  problem.flat_rhs(y.data(), expected_dy.data());
+  EXPECT_EQ(dy, expected_dy);
+  double omega[3], dz[5], expected_omega[3], expected_dz[5];
+  p.lie_rhs(p.context, y.data(), y.data() + kOffsetV, omega, dz);
+  problem.lie_rhs(rotation_of(y), y.data() + kOffsetV, expected_omega, expected_dz);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(omega[i], expected_omega[i]);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(dz[i], expected_dz[i]);
+  const Vec3 u(0.3, -0.2, 0.1), w(1.0, 2.0, -0.5);
+  double R[9], out[3];
+  p.so3_exp(p.context, u.data(), R);
+  EXPECT_EQ(Mat3(Eigen::Map<const RowMajorMat3>(R)), so3_exp(u));
+  p.so3_dexpinv(p.context, u.data(), w.data(), out);
+  EXPECT_EQ(Vec3(Eigen::Map<const Vec3>(out)), dexpinv(u, w));
+  EXPECT_EQ(cost.rhs_evals, 2);
+  EXPECT_EQ(cost.exp_evals, 1);
+  EXPECT_EQ(cost.dexpinv_evals, 1);
+}
+
+TEST(PluginStepper, AnErrorCodeIsAFailedRunWithThePluginsMessage) {
+  const std::unique_ptr<Integrator> plugin = load_plugin_stepper(library("fails_stepper"));
+  const Problem problem = make_problem(load_scene("valley-sideways"));
+  const RunOptions o = every_quarter(1.0 / 16.0, 2.0);
+  const RunResult run = plugin->integrate(problem, o);
+  EXPECT_EQ(run.status, Status::error);
+  EXPECT_EQ(run.message,
+            "stepper 'fails-stepper' returned error code 7 at t = 0.5: the linear solve did not converge (residual "
+            "1.0e-03)");
+  // it ends at the last valid state, with every output up to it
+  EXPECT_EQ(run.stop_time, 0.5);
+  EXPECT_EQ(run.output.t, (std::vector<double>{0.25, 0.5}));
+  const RunResult midpoint = find_integrator("midpoint").integrate(problem, every_quarter(1.0 / 16.0, 0.5));
+  EXPECT_EQ(run.final_state, midpoint.final_state);
+  EXPECT_EQ(run.cost.steps, 9);  // 8 and the failed attempt, counted as the driver counts a step that diverged
+}
+
+TEST(PluginStepper, ANonFiniteStateIsTheUsualDivergedStatus) {
+  const std::unique_ptr<Integrator> plugin = load_plugin_stepper(library("nan_stepper"));
+  const RunResult run = plugin->integrate(make_problem(load_scene("valley-sideways")), every_quarter(1.0 / 16.0, 2.0));
+  EXPECT_EQ(run.status, Status::diverged);
+  EXPECT_EQ(run.stop_time, 0.5);
+  EXPECT_TRUE(run.final_state.allFinite());
+}
+
+TEST(PluginStepper, ABrokenLibraryIsRefusedNamingTheFileAndTheSymbol) {
+  const std::string missing = library("no_such_stepper");
+  EXPECT_EQ(load_error(missing), "'stepper': '" + missing + "': no such file");
+  const std::string no_step = library("no_step_stepper");
+  EXPECT_EQ(load_error(no_step), "'stepper': '" + no_step +
+                                     "' does not export 'rollbench_stepper_step' (see "
+                                     "integrators/plugin/rollbench_stepper.h)");
+  const std::string bad_abi = library("bad_abi_stepper");
+  EXPECT_EQ(load_error(bad_abi), "'stepper': '" + bad_abi +
+                                     "': rollbench_stepper_abi_version() is 99, this rollbench takes 1 (rebuild it "
+                                     "against integrators/plugin/rollbench_stepper.h)");
+  const std::string bad_order = library("bad_order_stepper");
+  EXPECT_EQ(load_error(bad_order),
+            "'stepper': '" + bad_order + "': rollbench_stepper_info(): the order of 'bad-order-stepper' is 0, not >= 1");
+  // a file that is not a shared object: dlopen's reason follows
+  const std::string text = (std::filesystem::temp_directory_path() /
+                            ("rb-plugin-" + std::to_string(::getpid()) + "-not-a-library.so"))
+                               .string();
+  std::ofstream(text) << "not an ELF file\n";
+  EXPECT_EQ(load_error(text).rfind("'stepper': '" + text + "' is not a shared library that can be loaded (", 0), 0u)
+      << load_error(text);
+  std::filesystem::remove(text);
+}
+
+}  // namespace
+}  // namespace rb
