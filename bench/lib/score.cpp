@@ -94,7 +94,10 @@ class CsvRows {
   }
 
  private:
-  static std::string header_text() { return "'" + std::string(trajectory_csv_header()) + "'"; }
+  static std::string header_text() {
+    std::string text = "'";
+    return text.append(trajectory_csv_header()).append("'");
+  }
 
   std::istream& in_;
   const std::string& name_;
@@ -105,7 +108,10 @@ class CsvRows {
 // The grid's times in words: "0.25, 0.5, ..., 2 (every 0.25 up to t_end = 2)".
 std::string describe_times(const std::vector<double>& times, double spacing) {
   std::string list;
-  for (std::size_t i = 0; i < times.size() && i < 3; ++i) list += (i ? ", " : "") + short_number(times[i]);
+  for (std::size_t i = 0; i < times.size() && i < 3; ++i) {
+    if (i > 0) list += ", ";
+    list += short_number(times[i]);
+  }
   if (times.size() > 4) list += ", ...";
   if (times.size() > 3) list += ", " + short_number(times.back());
   return list + " (every " + short_number(spacing) + " up to t_end = " + short_number(times.back()) +
