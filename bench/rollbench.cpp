@@ -305,14 +305,16 @@ int main(int argc, char** argv) {
   merge->add_option("--out", merge_out, "the merged report")->required();
 
   ScoreArgs score;
-  CLI::App* score_cmd =
-      app.add_subcommand("score", "accuracy and drift of another program's trajectory CSV against the suite's reference");
+  CLI::App* score_cmd = app.add_subcommand(
+      "score", "accuracy and drift of another program's trajectory CSV against the suite's reference");
   score_cmd->add_option("scene", score.scene, "a shipped scene's name or a scene JSON file")->required();
   score_cmd->add_option("trajectory", score.csv, "the trajectory CSV (the columns `rollbench trajectory` writes)")
       ->required();
   score_cmd->add_option("--t-end", score.options.t_end, "end time, as the run's (default: the scene's t_end)")
       ->check(CLI::PositiveNumber);
-  score_cmd->add_option("--dt-out", score.options.dt_out, "spacing of the output times, as the run's --dt-out (default: the runner's 0.25)")
+  score_cmd
+      ->add_option("--dt-out", score.options.dt_out,
+                   "spacing of the output times, as the run's --dt-out (default: the runner's 0.25)")
       ->check(CLI::PositiveNumber);
   score_cmd->add_option("--cache", score.options.cache_dir, "directory for cached reference solutions");
   score_cmd->add_option("--out", score.out, "write the JSON here instead of standard output");

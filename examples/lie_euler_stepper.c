@@ -7,8 +7,8 @@
 #include "integrators/plugin/rollbench_stepper.h"
 
 static const struct rollbench_stepper_info info = {
-    "exp-euler-plugin", "plugin", 1, "exponential (Lie) Euler in C, loaded with --stepper (examples/lie_euler_stepper.c)",
-    ROLLBENCH_VIEW_LIE};
+    "exp-euler-plugin", "plugin", 1,
+    "exponential (Lie) Euler in C, loaded with --stepper (examples/lie_euler_stepper.c)", ROLLBENCH_VIEW_LIE};
 
 unsigned rollbench_stepper_abi_version(void) { return ROLLBENCH_STEPPER_ABI_VERSION; }
 
@@ -17,8 +17,8 @@ const struct rollbench_stepper_info* rollbench_stepper_info(void) { return &info
 int rollbench_stepper_step(const struct rollbench_problem* problem, double t, double h,
                            const double y[ROLLBENCH_FLAT_SIZE], double y_next[ROLLBENCH_FLAT_SIZE], char* message,
                            size_t message_size) {
-  const double* R = y;      /* y[0..8]: R row by row */
-  const double* z = y + 9;  /* y[9..13]: z = (v, alpha) */
+  const double* R = y;     /* y[0..8]: R row by row */
+  const double* z = y + 9; /* y[9..13]: z = (v, alpha) */
   double omega[3], dz[ROLLBENCH_Z_SIZE], u[3], E[9];
   (void)t;
   (void)message;

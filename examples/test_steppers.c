@@ -8,6 +8,7 @@
  *   RB_VARIANT_FAILS       returns error code 7 with a reason from t >= 0.5
  *   RB_VARIANT_NAN         writes a NaN state from t >= 0.5
  */
+#include <math.h>
 #include <stdio.h>
 
 #include "integrators/plugin/rollbench_stepper.h"
@@ -21,8 +22,8 @@
 #define RB_ORDER 2
 #endif
 
-static const struct rollbench_stepper_info info = {RB_VARIANT_NAME, "plugin", RB_ORDER, "a broken stepper for the tests",
-                                                   ROLLBENCH_VIEW_FLAT};
+static const struct rollbench_stepper_info info = {RB_VARIANT_NAME, "plugin", RB_ORDER,
+                                                   "a broken stepper for the tests", ROLLBENCH_VIEW_FLAT};
 
 unsigned rollbench_stepper_abi_version(void) {
 #ifdef RB_VARIANT_BAD_ABI
@@ -39,6 +40,7 @@ int rollbench_stepper_step(const struct rollbench_problem* problem, double t, do
                            const double y[ROLLBENCH_FLAT_SIZE], double y_next[ROLLBENCH_FLAT_SIZE], char* message,
                            size_t message_size) {
   double k[ROLLBENCH_FLAT_SIZE], mid[ROLLBENCH_FLAT_SIZE];
+  (void)t;  /* the variants that fail look at it */
 #ifdef RB_VARIANT_FAILS
   if (t >= 0.5) {
     snprintf(message, message_size, "the linear solve did not converge (residual %.1e)", 1e-3);
@@ -53,7 +55,7 @@ int rollbench_stepper_step(const struct rollbench_problem* problem, double t, do
   problem->flat_rhs(problem->context, mid, k);
   for (int i = 0; i < ROLLBENCH_FLAT_SIZE; ++i) y_next[i] = y[i] + h * k[i];
 #ifdef RB_VARIANT_NAN
-  if (t >= 0.5) y_next[12] = 0.0 / 0.0;
+  if (t >= 0.5) y_next[12] = NAN;
 #endif
   return 0;
 }

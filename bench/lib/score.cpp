@@ -193,22 +193,28 @@ json score_trajectory(const std::string& scene_name, std::istream& csv, const st
   measure_end(s, run, r);
   measure_grid(s, run, r);
   const std::string& kind = s.reference.kind;
-  return {{"schema", kScoreSchema},
-          {"scene", s.scene.name},
-          {"trajectory", csv_name},
-          {"status", status},
-          {"message", message},
-          {"stop_time", run.stop_time},
-          {"output_times", {{"spacing", spacing}, {"t_end", s.times.back()}, {"count", s.times.size()}}},
-          {"reference",
-           {{"kind", kind}, {"method", s.reference.method}, {"cross_check", s.reference.cross_check},
-            {"error", s.reference.error}, {"omega_scale", s.omega_scale}, {"message", s.reference.message}}},
-          {"error", errors_json(r.error, kind)},
-          {"error_max", errors_json(r.error_max, kind)},
-          {"scd", finite_or_null(r.error.scd)},
-          {"drift", {{"energy", finite_or_null(r.energy_drift)}, {"rotation_defect", finite_or_null(r.rotation_drift)}}},
-          {"timing", "not measured: the trajectory's timing and cost are the user's; rollbench measured only its "
-                     "accuracy and drift, at the output times above, against the suite's reference"}};
+  return {
+      {"schema", kScoreSchema},
+      {"scene", s.scene.name},
+      {"trajectory", csv_name},
+      {"status", status},
+      {"message", message},
+      {"stop_time", run.stop_time},
+      {"output_times", {{"spacing", spacing}, {"t_end", s.times.back()}, {"count", s.times.size()}}},
+      {"reference",
+       {{"kind", kind},
+        {"method", s.reference.method},
+        {"cross_check", s.reference.cross_check},
+        {"error", s.reference.error},
+        {"omega_scale", s.omega_scale},
+        {"message", s.reference.message}}},
+      {"error", errors_json(r.error, kind)},
+      {"error_max", errors_json(r.error_max, kind)},
+      {"scd", finite_or_null(r.error.scd)},
+      {"drift", {{"energy", finite_or_null(r.energy_drift)}, {"rotation_defect", finite_or_null(r.rotation_drift)}}},
+      {"timing",
+       "not measured: the trajectory's timing and cost are the user's; rollbench measured only its "
+       "accuracy and drift, at the output times above, against the suite's reference"}};
 }
 
 }  // namespace rb

@@ -60,8 +60,8 @@ void expect_close(const nlohmann::json& a, const nlohmann::json& b, const std::s
 TEST(Score, ACsvOfARunReproducesTheReportsErrorAndDrift) {
   // an exact reference (bowl-planar) and a computed one where R feeds back
   // (chaplygin-valley); fixed steps, whose grid run takes the timed run's steps
-  for (const auto& [scene, method, h] : {std::tuple{"bowl-planar", "rk4", 1.0 / 32.0},
-                                         std::tuple{"chaplygin-valley", "midpoint", 1.0 / 64.0}}) {
+  for (const auto& [scene, method, h] :
+       {std::tuple{"bowl-planar", "rk4", 1.0 / 32.0}, std::tuple{"chaplygin-valley", "midpoint", 1.0 / 64.0}}) {
     SweepSpec spec;
     spec.scenes = {scene};
     spec.t_end = 2.0;
@@ -128,7 +128,8 @@ TEST(Score, BadCsvsAreRefusedNamingTheLineAndTheColumn) {
             "'t.csv': line 3, column 22 (rotation_defect): missing column 'rotation_defect' (the row has 21 of 22)");
   std::string not_a_number = row_three[0] + "," + row_three[1] + "," + row_three[2] + ",abc";
   for (std::size_t i = 4; i < row_three.size(); ++i) not_a_number += "," + row_three[i];
-  EXPECT_EQ(refusal("bowl-planar", with_line(csv, 3, not_a_number)), "'t.csv': line 3, column 4 (cx): 'abc' is not a number");
+  EXPECT_EQ(refusal("bowl-planar", with_line(csv, 3, not_a_number)),
+            "'t.csv': line 3, column 4 (cx): 'abc' is not a number");
   // rows every 0.01 (rollbench trajectory's default spacing) are not the suite's times
   EXPECT_EQ(refusal("bowl-planar", first_lines(trajectory_csv("bowl-planar", "rk4", 0.01, 2.0, 0.01), 4)),
             "'t.csv': line 3, column 1 (t): t = 0.01 is not the next output time of scene 'bowl-planar': expected t = "

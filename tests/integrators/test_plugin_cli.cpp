@@ -5,41 +5,19 @@
 // failing step is a failed run in the report, never a crash of the sweep.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
-#include <sys/wait.h>
+
+#include "tests/cli_run.hpp"
 
 namespace rb {
 namespace {
 
-namespace fs = std::filesystem;
+using testing::cli_temp_file;
+using testing::run_rollbench;
+using testing::slurp;
 
 std::string library(const std::string& name) { return std::string(RB_STEPPER_DIR) + "/lib" + name + ".so"; }
-
-fs::path temp_file(const std::string& name) {
-  return fs::temp_directory_path() / ("rb-plugin-cli-" + std::to_string(::getpid()) + "-" + name);
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-struct Outcome {
-  int code;
-  std::string out, err;
-};
-
-Outcome rollbench(const std::string& args) {
-  const fs::path out = temp_file("stdout"), err = temp_file("stderr");
-  const std::string command = std::string(RB_ROLLBENCH_EXE) + " " + args + " > " + out.string() + " 2> " + err.string();
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-}
 
 const nlohmann::json* order_of(const nlohmann::json& report, const std::string& integrator) {
   for (const auto& o : report["orders"])
@@ -48,16 +26,17 @@ const nlohmann::json* order_of(const nlohmann::json& report, const std::string& 
 }
 
 TEST(PluginCli, RunSweepsTheExampleSteppersAndMeasuresTheirOrders) {
-  const fs::path report_path = temp_file("report.json");
-  const Outcome o = rollbench("run --preset quick --no-stability --repeats 1 --scenes bowl-planar --h 2^-4..2^-9 "
-                              "--integrators midpoint-plugin,exp-euler-plugin,midpoint,exp-euler --stepper " +
-                              library("midpoint_stepper") + " --stepper " + library("lie_euler_stepper") +
-                              " --out " + report_path.string());
+  const std::filesystem::path report_path = cli_temp_file("report.json");
+  const testing::CliOutcome o = run_rollbench(
+      "run --preset quick --no-stability --repeats 1 --scenes bowl-planar --h 2^-4..2^-9 "
+      "--integrators midpoint-plugin,exp-euler-plugin,midpoint,exp-euler --stepper " +
+      library("midpoint_stepper") + " --stepper " + library("lie_euler_stepper") + " --out " + report_path.string());
   ASSERT_EQ(o.code, 0) << o.err;
   const nlohmann::json report = nlohmann::json::parse(slurp(report_path));
   // each plug-in measures as its built-in twin does (exp-euler's omega
   // errors are above the fit window's 0.1 at these steps: inconclusive)
-  for (const auto& [name, twin] : {std::pair{"midpoint-plugin", "midpoint"}, std::pair{"exp-euler-plugin", "exp-euler"}}) {
+  for (const auto& [name, twin] :
+       {std::pair{"midpoint-plugin", "midpoint"}, std::pair{"exp-euler-plugin", "exp-euler"}}) {
     const nlohmann::json* fit = order_of(report, name);
     const nlohmann::json* twin_fit = order_of(report, twin);
     ASSERT_NE(fit, nullptr) << name;
@@ -95,19 +74,21 @@ TEST(PluginCli, RunSweepsTheExampleSteppersAndMeasuresTheirOrders) {
 }
 
 TEST(PluginCli, ListAndTrajectoryTakeSteppers) {
-  const Outcome list = rollbench("list --stepper " + library("midpoint_stepper"));
+  const testing::CliOutcome list = run_rollbench("list --stepper " + library("midpoint_stepper"));
   ASSERT_EQ(list.code, 0) << list.err;
   EXPECT_NE(list.out.find("  midpoint-plugin              plugin    2  fixed    explicit midpoint rule in C"),
             std::string::npos)
       << list.out;
-  const fs::path csv = temp_file("t.csv");
-  const Outcome t = rollbench("trajectory valley-sideways --integrator midpoint-plugin --h 0.01 --t-end 1 --out " +
-                              csv.string() + " --stepper " + library("midpoint_stepper"));
+  const std::filesystem::path csv = cli_temp_file("t.csv");
+  const testing::CliOutcome t =
+      run_rollbench("trajectory valley-sideways --integrator midpoint-plugin --h 0.01 --t-end 1 --out " + csv.string() +
+                    " --stepper " + library("midpoint_stepper"));
   EXPECT_EQ(t.code, 0) << t.err;
   EXPECT_EQ(t.out.rfind("midpoint-plugin on valley-sideways: ok at t = 1 (101 rows", 0), 0u) << t.out;
   // a failing step: the run stops early (exit 3) with the plug-in's reason
-  const Outcome f = rollbench("trajectory valley-sideways --integrator fails-stepper --h 0.0625 --out " + csv.string() +
-                              " --stepper " + library("fails_stepper"));
+  const testing::CliOutcome f =
+      run_rollbench("trajectory valley-sideways --integrator fails-stepper --h 0.0625 --out " + csv.string() +
+                    " --stepper " + library("fails_stepper"));
   EXPECT_EQ(f.code, 3);
   EXPECT_EQ(f.err,
             "rollbench: run stopped early at t = 0.5: error: stepper 'fails-stepper' returned error code 7 at t = 0.5: "
@@ -115,10 +96,11 @@ TEST(PluginCli, ListAndTrajectoryTakeSteppers) {
 }
 
 TEST(PluginCli, AFailingStepperIsAFailedRunInTheReport) {
-  const fs::path report_path = temp_file("failing.json");
-  const Outcome o = rollbench("run --preset quick --no-stability --repeats 1 --scenes valley-sideways --h 0.0625 "
-                              "--integrators fails-stepper,nan-stepper,rk4 --stepper " + library("fails_stepper") +
-                              " --stepper " + library("nan_stepper") + " --out " + report_path.string());
+  const std::filesystem::path report_path = cli_temp_file("failing.json");
+  const testing::CliOutcome o = run_rollbench(
+      "run --preset quick --no-stability --repeats 1 --scenes valley-sideways --h 0.0625 "
+      "--integrators fails-stepper,nan-stepper,rk4 --stepper " +
+      library("fails_stepper") + " --stepper " + library("nan_stepper") + " --out " + report_path.string());
   ASSERT_EQ(o.code, 0) << o.err;
   const nlohmann::json report = nlohmann::json::parse(slurp(report_path));
   ASSERT_EQ(report["runs"].size(), 3u);
@@ -137,20 +119,20 @@ TEST(PluginCli, AFailingStepperIsAFailedRunInTheReport) {
 TEST(PluginCli, ABrokenStepperExitsWithTwoNamingTheFileAndTheSymbol) {
   const std::string no_step = library("no_step_stepper"), bad_abi = library("bad_abi_stepper"),
                     example = library("midpoint_stepper");
-  const Outcome a = rollbench("run --preset quick --out x.json --stepper " + no_step);
+  const testing::CliOutcome a = run_rollbench("run --preset quick --out x.json --stepper " + no_step);
   EXPECT_EQ(a.code, 2);
   EXPECT_EQ(a.err, "rollbench: 'stepper': '" + no_step +
                        "' does not export 'rollbench_stepper_step' (see integrators/plugin/rollbench_stepper.h)\n");
-  const Outcome b = rollbench("list --stepper " + bad_abi);
+  const testing::CliOutcome b = run_rollbench("list --stepper " + bad_abi);
   EXPECT_EQ(b.code, 2);
   EXPECT_EQ(b.err, "rollbench: 'stepper': '" + bad_abi +
                        "': rollbench_stepper_abi_version() is 99, this rollbench takes 1 (rebuild it against "
                        "integrators/plugin/rollbench_stepper.h)\n");
-  const Outcome c = rollbench("list --stepper " + example + " --stepper " + example);
+  const testing::CliOutcome c = run_rollbench("list --stepper " + example + " --stepper " + example);
   EXPECT_EQ(c.code, 2);
   EXPECT_EQ(c.err, "rollbench: 'stepper': '" + example +
                        "': rollbench_stepper_info(): integrator 'midpoint-plugin' is already registered\n");
-  const Outcome d = rollbench("list --stepper /nonexistent/libx.so");
+  const testing::CliOutcome d = run_rollbench("list --stepper /nonexistent/libx.so");
   EXPECT_EQ(d.code, 2);
   EXPECT_EQ(d.err, "rollbench: 'stepper': '/nonexistent/libx.so': no such file\n");
 }

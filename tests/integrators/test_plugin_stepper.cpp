@@ -52,8 +52,10 @@ TEST(PluginStepper, TheExampleDeclaresItsFacts) {
   EXPECT_EQ(m->family(), "plugin");
   EXPECT_EQ(m->declared_order(), 2);
   EXPECT_FALSE(m->adaptive());
-  EXPECT_EQ(m->description(), "explicit midpoint rule in C, loaded with --stepper (examples/midpoint_stepper.c) "
-                              "(plug-in, flat view, " + library("midpoint_stepper") + ")");
+  EXPECT_EQ(m->description(),
+            "explicit midpoint rule in C, loaded with --stepper (examples/midpoint_stepper.c) "
+            "(plug-in, flat view, " +
+                library("midpoint_stepper") + ")");
 }
 
 TEST(PluginStepper, GivesTheBuiltInMidpointsNumbersAndCounts) {
@@ -66,7 +68,8 @@ TEST(PluginStepper, GivesTheBuiltInMidpointsNumbersAndCounts) {
     ASSERT_EQ(a.status, Status::ok) << scene << ": " << a.message;
     ASSERT_EQ(a.output.t, b.output.t);
     for (std::size_t i = 0; i < a.output.y.size(); ++i)
-      for (int j = 0; j < kFlatSize; ++j) EXPECT_EQ(a.output.y[i][j], b.output.y[i][j]) << scene << " t = " << a.output.t[i];
+      for (int j = 0; j < kFlatSize; ++j)
+        EXPECT_EQ(a.output.y[i][j], b.output.y[i][j]) << scene << " t = " << a.output.t[i];
     expect_same_cost(a.cost, b.cost);
     EXPECT_EQ(a.cost.rhs_evals, 2 * a.cost.steps);
     EXPECT_EQ(a.cost.steps, 128);
@@ -153,12 +156,12 @@ TEST(PluginStepper, ABrokenLibraryIsRefusedNamingTheFileAndTheSymbol) {
                                      "': rollbench_stepper_abi_version() is 99, this rollbench takes 1 (rebuild it "
                                      "against integrators/plugin/rollbench_stepper.h)");
   const std::string bad_order = library("bad_order_stepper");
-  EXPECT_EQ(load_error(bad_order),
-            "'stepper': '" + bad_order + "': rollbench_stepper_info(): the order of 'bad-order-stepper' is 0, not >= 1");
+  EXPECT_EQ(load_error(bad_order), "'stepper': '" + bad_order +
+                                       "': rollbench_stepper_info(): the order of 'bad-order-stepper' is 0, not >= 1");
   // a file that is not a shared object: dlopen's reason follows
-  const std::string text = (std::filesystem::temp_directory_path() /
-                            ("rb-plugin-" + std::to_string(::getpid()) + "-not-a-library.so"))
-                               .string();
+  const std::string text =
+      (std::filesystem::temp_directory_path() / ("rb-plugin-" + std::to_string(::getpid()) + "-not-a-library.so"))
+          .string();
   std::ofstream(text) << "not an ELF file\n";
   EXPECT_EQ(load_error(text).rfind("'stepper': '" + text + "' is not a shared library that can be loaded (", 0), 0u)
       << load_error(text);
