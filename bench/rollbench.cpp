@@ -221,15 +221,24 @@ int run_sweep_command(const RunArgs& a) {
 }
 
 struct ScoreArgs {
-  std::string scene, csv, out;
-  rb::ScoreOptions options;
+  std::string scene, csv, out, cache;
+  double t_end = std::nan(""), dt_out = std::nan("");  // NaN: not given
 };
 
 // A trajectory from another program scored against the suite's reference.
 int run_score(const ScoreArgs& a) {
   std::ifstream csv(a.csv);
   if (!csv) throw rb::InputError("cannot open '" + a.csv + "' for reading", "trajectory");
-  const nlohmann::json score = rb::score_trajectory(a.scene, csv, a.csv, a.options);
+  rb::ScoreOptions options;
+  options.cache_dir = a.cache;
+  // given: a finite number > 0 (0 in ScoreOptions means "the default")
+  if (!std::isnan(a.t_end) && !(a.t_end > 0.0 && std::isfinite(a.t_end)))
+    throw rb::InputError("the end time must be a finite number > 0", "t-end");
+  if (!std::isnan(a.dt_out) && !(a.dt_out > 0.0 && std::isfinite(a.dt_out)))
+    throw rb::InputError("the output spacing must be a finite number > 0", "dt-out");
+  options.t_end = std::isnan(a.t_end) ? 0.0 : a.t_end;
+  options.dt_out = std::isnan(a.dt_out) ? 0.0 : a.dt_out;
+  const nlohmann::json score = rb::score_trajectory(a.scene, csv, a.csv, options);
   if (a.out.empty()) {
     std::printf("%s\n", score.dump(1).c_str());
   } else {
@@ -310,13 +319,10 @@ int main(int argc, char** argv) {
   score_cmd->add_option("scene", score.scene, "a shipped scene's name or a scene JSON file")->required();
   score_cmd->add_option("trajectory", score.csv, "the trajectory CSV (the columns `rollbench trajectory` writes)")
       ->required();
-  score_cmd->add_option("--t-end", score.options.t_end, "end time, as the run's (default: the scene's t_end)")
-      ->check(CLI::PositiveNumber);
-  score_cmd
-      ->add_option("--dt-out", score.options.dt_out,
-                   "spacing of the output times, as the run's --dt-out (default: the runner's 0.25)")
-      ->check(CLI::PositiveNumber);
-  score_cmd->add_option("--cache", score.options.cache_dir, "directory for cached reference solutions");
+  score_cmd->add_option("--t-end", score.t_end, "end time, as the run's (default: the scene's t_end)");
+  score_cmd->add_option("--dt-out", score.dt_out,
+                        "spacing of the output times, as the run's --dt-out (default: the runner's 0.25)");
+  score_cmd->add_option("--cache", score.cache, "directory for cached reference solutions");
   score_cmd->add_option("--out", score.out, "write the JSON here instead of standard output");
 
   try {

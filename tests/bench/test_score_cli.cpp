@@ -58,6 +58,13 @@ TEST(ScoreCli, ABadCsvExitsWithTwoNamingTheLineAndTheColumn) {
                        "': line 1, column 4 (cx): missing column 'cx'; expected the header "
                        "'t,x,y,cx,cy,cz,wx,wy,wz,r00,r01,r02,r10,r11,r12,r20,r21,r22,energy,normal_force,spin,"
                        "rotation_defect'\n");
+  for (const char* value : {"-1", "0", "inf", "nan"}) {
+    const testing::CliOutcome t_end = run_rollbench("score plane " + csv.string() + " --t-end " + value);
+    EXPECT_EQ(t_end.code, 2) << value;
+    EXPECT_EQ(t_end.err, "rollbench: 't-end': the end time must be a finite number > 0\n") << value;
+  }
+  const testing::CliOutcome dt_out = run_rollbench("score plane " + csv.string() + " --dt-out -0.25");
+  EXPECT_EQ(dt_out.err, "rollbench: 'dt-out': the output spacing must be a finite number > 0\n");
   const testing::CliOutcome missing = run_rollbench("score plane /nonexistent/t.csv");
   EXPECT_EQ(missing.code, 2);
   EXPECT_EQ(missing.err, "rollbench: 'trajectory': cannot open '/nonexistent/t.csv' for reading\n");
