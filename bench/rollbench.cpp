@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "bench/lib/report.hpp"
@@ -222,7 +223,7 @@ int run_sweep_command(const RunArgs& a) {
 
 struct ScoreArgs {
   std::string scene, csv, out, cache;
-  double t_end = std::nan(""), dt_out = std::nan("");  // NaN: not given
+  std::optional<double> t_end, dt_out;
 };
 
 // A trajectory from another program scored against the suite's reference.
@@ -232,12 +233,12 @@ int run_score(const ScoreArgs& a) {
   rb::ScoreOptions options;
   options.cache_dir = a.cache;
   // given: a finite number > 0 (0 in ScoreOptions means "the default")
-  if (!std::isnan(a.t_end) && !(a.t_end > 0.0 && std::isfinite(a.t_end)))
+  if (a.t_end && !(*a.t_end > 0.0 && std::isfinite(*a.t_end)))
     throw rb::InputError("the end time must be a finite number > 0", "t-end");
-  if (!std::isnan(a.dt_out) && !(a.dt_out > 0.0 && std::isfinite(a.dt_out)))
+  if (a.dt_out && !(*a.dt_out > 0.0 && std::isfinite(*a.dt_out)))
     throw rb::InputError("the output spacing must be a finite number > 0", "dt-out");
-  options.t_end = std::isnan(a.t_end) ? 0.0 : a.t_end;
-  options.dt_out = std::isnan(a.dt_out) ? 0.0 : a.dt_out;
+  options.t_end = a.t_end.value_or(0.0);
+  options.dt_out = a.dt_out.value_or(0.0);
   const nlohmann::json score = rb::score_trajectory(a.scene, csv, a.csv, options);
   if (a.out.empty()) {
     std::printf("%s\n", score.dump(1).c_str());
