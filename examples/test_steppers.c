@@ -5,6 +5,7 @@
  *   RB_VARIANT_NO_STEP     does not export rollbench_stepper_step
  *   RB_VARIANT_BAD_ABI     reports ABI version 99
  *   RB_VARIANT_BAD_ORDER   declares order 0
+ *   RB_VARIANT_BAD_NAME    declares a name with a space
  *   RB_VARIANT_FAILS       returns error code 7 with a reason from t >= 0.5
  *   RB_VARIANT_NAN         writes a NaN state from t >= 0.5
  */
@@ -13,8 +14,9 @@
 
 #include "integrators/plugin/rollbench_stepper.h"
 
-#ifndef RB_VARIANT_NAME
-#define RB_VARIANT_NAME "test-stepper"
+#ifdef RB_VARIANT_BAD_NAME
+#undef RB_VARIANT_NAME
+#define RB_VARIANT_NAME "bad name"
 #endif
 #ifdef RB_VARIANT_BAD_ORDER
 #define RB_ORDER 0

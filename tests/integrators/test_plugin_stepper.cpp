@@ -158,6 +158,10 @@ TEST(PluginStepper, ABrokenLibraryIsRefusedNamingTheFileAndTheSymbol) {
   const std::string bad_order = library("bad_order_stepper");
   EXPECT_EQ(load_error(bad_order), "'stepper': '" + bad_order +
                                        "': rollbench_stepper_info(): the order of 'bad-order-stepper' is 0, not >= 1");
+  const std::string bad_name = library("bad_name_stepper");
+  EXPECT_EQ(load_error(bad_name), "'stepper': '" + bad_name +
+                                      "': rollbench_stepper_info(): the name 'bad name' may hold only letters, digits "
+                                      "and . _ + -");
   // a file that is not a shared object: dlopen's reason follows
   const std::string text =
       (std::filesystem::temp_directory_path() / ("rb-plugin-" + std::to_string(::getpid()) + "-not-a-library.so"))
