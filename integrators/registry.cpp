@@ -55,9 +55,10 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   // --- end lie-group adaptive and baselines ---
 
   // --- commutator-free and Crouch-Grossman ---
-  // products of exponentials only (exp_product.hpp); the -reversed variants
-  // compose every product the other way round and lose an order... in R:
-  // declared as the paper's, measured by the tests (see crouch_grossman.cpp)
+  // products of exponentials only (exp_product.hpp). The -reversed variants
+  // compose every product the other way round: declared at the paper's
+  // order, they are order 2 in R (crouch_grossman.cpp), and where R feeds
+  // back in every component; then rkmk4 with the Cayley map (rkmk_cayley.hpp)
   add(std::make_unique<ExpProductMethod>(schemes::cf4(), "cf"));
   add(std::make_unique<ExpProductMethod>(schemes::cg3(), "cg"));
   add(std::make_unique<ExpProductMethod>(schemes::cg4a(), "cg"));
