@@ -17,6 +17,8 @@ namespace rb::schemes {
 ExpProductScheme cf4() {
   ExpProductScheme s;
   s.name = "cf4";
+  s.family = "cf";
+  s.kind = "commutator-free";
   s.order = 4;
   s.stages = {
       {},

@@ -33,6 +33,8 @@ ExpProductScheme crouch_grossman(std::string name, int order, const std::vector<
                                  const std::vector<double>& b, std::string source) {
   ExpProductScheme s;
   s.name = std::move(name);
+  s.family = "cg";
+  s.kind = "Crouch-Grossman";
   s.order = order;
   auto product = [](const std::vector<double>& row) {
     ExpProduct p;

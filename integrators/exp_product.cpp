@@ -13,6 +13,7 @@ ExpProductScheme reversed(ExpProductScheme scheme, std::string name) {
   for (ExpProduct& product : scheme.stages) std::reverse(product.begin(), product.end());
   std::reverse(scheme.update.begin(), scheme.update.end());
   scheme.name = std::move(name);
+  scheme.rotation_order = std::min(scheme.order, 2);
   scheme.source += ", every product composed in the opposite order";
   return scheme;
 }
@@ -144,14 +145,12 @@ struct ExpProductStep {
 
 }  // namespace
 
-ExpProductMethod::ExpProductMethod(ExpProductScheme scheme, std::string family, int rotation_order)
-    : scheme_(std::move(scheme)), family_(std::move(family)),
-      rotation_order_(rotation_order > 0 ? rotation_order : scheme_.order) {
+ExpProductMethod::ExpProductMethod(ExpProductScheme scheme) : scheme_(std::move(scheme)) {
   plan_of(scheme_);  // rejects a malformed scheme here, not in a run
 }
 
 std::string ExpProductMethod::description() const {
-  return std::to_string(scheme_.stages.size()) + "-stage " + (family_ == "cf" ? "commutator-free" : "Crouch-Grossman") +
+  return std::to_string(scheme_.stages.size()) + "-stage " + scheme_.kind +
          " method on the Lie-group view, " + std::to_string(exponentials_per_step(true)) +
          " exponentials a step (" + std::to_string(exponentials_per_step(false)) +
          " for a homogeneous ball): " + scheme_.source;

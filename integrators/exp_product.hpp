@@ -23,7 +23,10 @@ using ExpProduct = std::vector<FieldSum>;
 
 struct ExpProductScheme {
   std::string name;                // registry name, e.g. "cf4"
+  std::string family;              // "cf" or "cg"
+  std::string kind;                // the family in words, for the description
   int order = 0;                   // as the paper states it
+  int rotation_order = 0;          // where the composition loses order in R; 0: order
   std::vector<ExpProduct> stages;  // stage i's product (stage 0: empty, R_n itself)
   ExpProduct update;               // R_{n+1}
   std::string source;              // where the coefficients are from
@@ -31,19 +34,21 @@ struct ExpProductScheme {
 
 // The same factors with every product (stages and update) composed in the
 // opposite order, under the name given: what an implementation that reads
-// the paper's products the other way round computes.
+// the paper's products the other way round computes. Its order stays the
+// paper's (what a user of it expects); its rotation_order is 2: the h^3
+// commutator term of the update changes sign (crouch_grossman.cpp), and
+// ordering enters no condition below it.
 ExpProductScheme reversed(ExpProductScheme scheme, std::string name);
 
 class ExpProductMethod final : public Integrator {
  public:
-  // rotation_order: the order in R where the composition loses it (the
-  // reversed schemes), else the scheme's. Throws std::invalid_argument for a
-  // scheme whose stage uses a field not yet computed.
-  ExpProductMethod(ExpProductScheme scheme, std::string family, int rotation_order = 0);
+  // Throws std::invalid_argument for a scheme whose stage uses a field not
+  // yet computed.
+  explicit ExpProductMethod(ExpProductScheme scheme);
   std::string name() const override { return scheme_.name; }
-  std::string family() const override { return family_; }
+  std::string family() const override { return scheme_.family; }
   int declared_order() const override { return scheme_.order; }
-  int rotation_order() const override { return rotation_order_; }
+  int rotation_order() const override { return scheme_.rotation_order > 0 ? scheme_.rotation_order : scheme_.order; }
   std::string description() const override;
   RunResult integrate(const Problem& problem, const RunOptions& options) const override;
 
@@ -55,8 +60,6 @@ class ExpProductMethod final : public Integrator {
 
  private:
   ExpProductScheme scheme_;
-  std::string family_;
-  int rotation_order_;
 };
 
 }  // namespace rb

@@ -55,16 +55,15 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   // --- end lie-group adaptive and baselines ---
 
   // --- commutator-free and Crouch-Grossman ---
-  // products of exponentials only (exp_product.hpp). The -reversed variants
-  // compose every product the other way round: declared at the paper's
-  // order, they are order 2 in R (crouch_grossman.cpp), and where R feeds
-  // back in every component; then rkmk4 with the Cayley map (rkmk_cayley.hpp)
-  add(std::make_unique<ExpProductMethod>(schemes::cf4(), "cf"));
-  add(std::make_unique<ExpProductMethod>(schemes::cg3(), "cg"));
-  add(std::make_unique<ExpProductMethod>(schemes::cg4a(), "cg"));
-  add(std::make_unique<ExpProductMethod>(reversed(schemes::cf4(), "cf4-reversed"), "cf", 2));
-  add(std::make_unique<ExpProductMethod>(reversed(schemes::cg3(), "cg3-reversed"), "cg", 2));
-  add(std::make_unique<ExpProductMethod>(reversed(schemes::cg4a(), "cg4a-reversed"), "cg", 2));
+  // products of exponentials only (exp_product.hpp); the -reversed variants
+  // compose every product the other way round (order 2 in R, and where R
+  // feeds back in every component); then rkmk4 with the Cayley map
+  add(std::make_unique<ExpProductMethod>(schemes::cf4()));
+  add(std::make_unique<ExpProductMethod>(schemes::cg3()));
+  add(std::make_unique<ExpProductMethod>(schemes::cg4a()));
+  add(std::make_unique<ExpProductMethod>(reversed(schemes::cf4(), "cf4-reversed")));
+  add(std::make_unique<ExpProductMethod>(reversed(schemes::cg3(), "cg3-reversed")));
+  add(std::make_unique<ExpProductMethod>(reversed(schemes::cg4a(), "cg4a-reversed")));
   add(std::make_unique<MuntheKaasCayley>(t::rk4(), "rkmk4-cayley"));
   // --- end commutator-free and Crouch-Grossman ---
 

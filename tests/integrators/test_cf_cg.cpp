@@ -184,7 +184,7 @@ TEST(CfCg, MalformedSchemeIsRefused) {
   ExpProductScheme s = schemes::cg3();
   s.stages[1] = {{0.5, 0.5}};  // stage 2 cannot use F_2
   try {
-    ExpProductMethod m(s, "cg");
+    ExpProductMethod m(s);
     FAIL() << "no error";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "cg3 stage 2 uses a field not yet computed");
@@ -198,6 +198,11 @@ TEST(CfCg, ReversedComposesEveryProductTheOtherWay) {
   EXPECT_EQ(r.update.front(), s.update.back());
   EXPECT_EQ(r.stages[3].front(), s.stages[3].back());
   EXPECT_EQ(r.stages[1], s.stages[1]);
+  // declared as the paper's method, with the order in R it loses
+  const Integrator& registered = find_integrator("cg4a-reversed");
+  EXPECT_EQ(registered.declared_order(), 4);
+  EXPECT_EQ(registered.rotation_order(), 2);
+  EXPECT_EQ(find_integrator("cg4a").rotation_order(), 4);
 }
 
 }  // namespace
