@@ -1,11 +1,14 @@
 #include "integrators/registry.hpp"
 
 #include "integrators/baselines.hpp"
+#include "integrators/commutator_free.hpp"
+#include "integrators/crouch_grossman.hpp"
 #include "integrators/gsl.hpp"
 #include "integrators/explicit_midpoint.hpp"
 #include "integrators/munthe_kaas.hpp"
 #include "integrators/munthe_kaas_adaptive.hpp"
 #include "integrators/odeint.hpp"
+#include "integrators/rkmk_cayley.hpp"
 #include "integrators/runge_kutta.hpp"
 #include "integrators/tableaus.hpp"
 #include "integrators/tableaus_high_order.hpp"
@@ -50,6 +53,19 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   add(std::make_unique<Rk4Projected>(Projection::svd));
   add(std::make_unique<Rk4Quaternion>());
   // --- end lie-group adaptive and baselines ---
+
+  // --- commutator-free and Crouch-Grossman ---
+  // products of exponentials only (exp_product.hpp); the -reversed variants
+  // compose every product the other way round (order 2 in R, and where R
+  // feeds back in every component); then rkmk4 with the Cayley map
+  add(std::make_unique<ExpProductMethod>(schemes::cf4()));
+  add(std::make_unique<ExpProductMethod>(schemes::cg3()));
+  add(std::make_unique<ExpProductMethod>(schemes::cg4a()));
+  add(std::make_unique<ExpProductMethod>(reversed(schemes::cf4(), "cf4-reversed")));
+  add(std::make_unique<ExpProductMethod>(reversed(schemes::cg3(), "cg3-reversed")));
+  add(std::make_unique<ExpProductMethod>(reversed(schemes::cg4a(), "cg4a-reversed")));
+  add(std::make_unique<MuntheKaasCayley>(t::rk4(), "rkmk4-cayley"));
+  // --- end commutator-free and Crouch-Grossman ---
 
   // --- odeint --- (Boost.Odeint steppers on the flat view)
   add(odeint_euler());

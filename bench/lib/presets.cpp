@@ -24,7 +24,7 @@ SweepSpec preset(const std::string& name) {
   if (name == "quick") {
     // CI: a handful of methods, two scenes, short runs
     s.scenes = {"valley-sideways", "bowl-planar"};
-    s.integrators = {"euler", "exp-euler", "rk4", "rkmk4", "rkmk4-seminar", "odeint-rk4", "gsl-rk4",
+    s.integrators = {"euler", "exp-euler", "rk4", "rkmk4", "rkmk4-seminar", "cf4", "cg4a", "odeint-rk4", "gsl-rk4",
                      "odeint-dopri5-adaptive", "gsl-rkf45-adaptive"};
     s.hs = powers_of_two(4, 9);
     s.tols = {1e-4, 1e-6, 1e-8, 1e-10};

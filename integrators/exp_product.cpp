@@ -1,0 +1,176 @@
+#include "integrators/exp_product.hpp"
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+
+#include "integrators/fixed_step.hpp"
+#include "problems/so3.hpp"
+
+namespace rb {
+
+ExpProductScheme reversed(ExpProductScheme scheme, std::string name) {
+  for (ExpProduct& product : scheme.stages) std::reverse(product.begin(), product.end());
+  std::reverse(scheme.update.begin(), scheme.update.end());
+  scheme.name = std::move(name);
+  scheme.rotation_order = std::min(scheme.order, 2);
+  scheme.source += ", every product composed in the opposite order";
+  return scheme;
+}
+
+namespace {
+
+using Row = StageTerms::Row;
+
+// A product as the step runs it: its non-zero factors, and the stage whose
+// orientation is the product of its first factors (CF4's Y_4 continues
+// from Y_2), so that no exponential is computed twice.
+struct PlannedProduct {
+  int base = -1;  // -1: R_n itself
+  int count = 0;
+  std::array<Row, kMaxStages> factor;  // the rest, in the order applied
+};
+
+struct Plan {
+  int stages = 0;
+  std::array<PlannedProduct, kMaxStages> stage;
+  PlannedProduct update;
+  std::array<Row, kMaxStages> z_stage;  // Z_i - z = h sum over stage i's factors
+  Row z_update;
+};
+
+Row row_of(const FieldSum& sum, std::size_t fields, const std::string& where) {
+  if (sum.size() > fields) throw std::invalid_argument(where + " uses a field not yet computed");
+  Row row;
+  for (std::size_t j = 0; j < sum.size(); ++j) row.add(static_cast<int>(j), sum[j]);
+  return row;
+}
+
+// the non-zero factors of a product
+std::vector<FieldSum> nonzero_factors(const ExpProduct& product) {
+  std::vector<FieldSum> out;
+  for (const FieldSum& f : product)
+    if (std::any_of(f.begin(), f.end(), [](double c) { return c != 0.0; })) out.push_back(f);
+  return out;
+}
+
+// a Row summing the coefficients of every factor (the z part of the product)
+Row z_row_of(const std::vector<FieldSum>& factors, std::size_t fields) {
+  FieldSum total(fields, 0.0);
+  for (const FieldSum& f : factors)
+    for (std::size_t j = 0; j < f.size(); ++j) total[j] += f[j];
+  return row_of(total, fields, "");
+}
+
+Plan plan_of(const ExpProductScheme& scheme) {
+  const std::size_t s = scheme.stages.size();
+  if (s < 1 || s > static_cast<std::size_t>(kMaxStages) || !scheme.stages[0].empty())
+    throw std::invalid_argument(scheme.name + ": 1 to 16 stages, the first with no exponentials");
+  Plan plan;
+  plan.stages = static_cast<int>(s);
+  std::vector<std::vector<FieldSum>> factors(s);
+  auto plan_product = [&](const std::vector<FieldSum>& mine, std::size_t fields, const std::string& where,
+                          std::size_t earlier_stages) {
+    PlannedProduct p;
+    std::size_t skip = 0;
+    // the longest earlier stage product that starts this one
+    for (std::size_t k = 1; k < earlier_stages; ++k)
+      if (!factors[k].empty() && factors[k].size() > skip && factors[k].size() <= mine.size() &&
+          std::equal(factors[k].begin(), factors[k].end(), mine.begin())) {
+        p.base = static_cast<int>(k);
+        skip = factors[k].size();
+      }
+    for (std::size_t n = skip; n < mine.size(); ++n)
+      p.factor[static_cast<std::size_t>(p.count++)] = row_of(mine[n], fields, where);
+    return p;
+  };
+  for (std::size_t i = 1; i < s; ++i) {
+    const std::string where = scheme.name + " stage " + std::to_string(i + 1);
+    factors[i] = nonzero_factors(scheme.stages[i]);
+    if (factors[i].size() > static_cast<std::size_t>(kMaxStages)) throw std::invalid_argument(where + ": too many factors");
+    plan.stage[i] = plan_product(factors[i], i, where, i);
+    plan.z_stage[i] = z_row_of(factors[i], i);
+  }
+  const std::vector<FieldSum> update = nonzero_factors(scheme.update);
+  if (update.empty() || update.size() > static_cast<std::size_t>(kMaxStages))
+    throw std::invalid_argument(scheme.name + ": the update needs 1 to 16 exponentials");
+  plan.update = plan_product(update, s, scheme.name + " update", 1);
+  plan.z_update = z_row_of(update, s);
+  return plan;
+}
+
+struct ExpProductStep {
+  const Problem& problem;
+  const Plan& plan;
+  bool anisotropic;                   // stage orientations needed
+  std::array<Vec3, kMaxStages>& K;    // omega at the stages
+  std::array<ZState, kMaxStages>& L;  // z' at the stages
+  std::array<Mat3, kMaxStages>& Rs;   // the stage orientations
+
+  Mat3 apply(const PlannedProduct& p, const Mat3& R, double h, Cost& cost) const {
+    Mat3 M = p.base < 0 ? R : Rs[static_cast<std::size_t>(p.base)];
+    for (std::size_t n = 0; n < static_cast<std::size_t>(p.count); ++n) {
+      Vec3 U;
+      p.factor[n].sum(U, h, K);
+      M = so3_exp(U) * M;
+    }
+    cost.exp_evals += p.count;
+    return M;
+  }
+
+  // margins: the validity margins at y, from the first stage (at y itself)
+  void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost,
+                  ModelMargins& margins) const {
+    const ZState z = z_of(y);
+    const Mat3 R = rotation_of(y);
+    problem.lie_rhs(R, z.data(), K[0].data(), L[0].data(), margins);
+    for (std::size_t i = 1; i < static_cast<std::size_t>(plan.stages); ++i) {
+      ZState Z;
+      plan.z_stage[i].sum(Z, z, h, L);
+      if (anisotropic) {
+        // R enters omega and G: evaluate at the stage's own orientation
+        Rs[i] = apply(plan.stage[i], R, h, cost);
+        problem.lie_rhs(Rs[i], Z.data(), K[i].data(), L[i].data());
+      } else {
+        problem.lie_rhs(R, Z.data(), K[i].data(), L[i].data());
+      }
+    }
+    ZState dz;
+    plan.z_update.sum(dz, h, L);
+    set_rotation(next, apply(plan.update, R, h, cost));
+    next.tail<kZSize>() = z + dz;
+    cost.rhs_evals += plan.stages;
+  }
+};
+
+}  // namespace
+
+ExpProductMethod::ExpProductMethod(ExpProductScheme scheme) : scheme_(std::move(scheme)) {
+  plan_of(scheme_);  // rejects a malformed scheme here, not in a run
+}
+
+std::string ExpProductMethod::description() const {
+  return std::to_string(scheme_.stages.size()) + "-stage " + scheme_.kind +
+         " method on the Lie-group view, " + std::to_string(exponentials_per_step(true)) +
+         " exponentials a step (" + std::to_string(exponentials_per_step(false)) +
+         " for a homogeneous ball): " + scheme_.source;
+}
+
+int ExpProductMethod::exponentials_per_step(bool anisotropic) const {
+  const Plan plan = plan_of(scheme_);
+  int n = plan.update.count;
+  if (anisotropic)
+    for (std::size_t i = 1; i < static_cast<std::size_t>(plan.stages); ++i) n += plan.stage[i].count;
+  return n;
+}
+
+RunResult ExpProductMethod::integrate(const Problem& problem, const RunOptions& options) const {
+  const Plan plan = plan_of(scheme_);
+  std::array<Vec3, kMaxStages> K;
+  std::array<ZState, kMaxStages> L;
+  std::array<Mat3, kMaxStages> Rs;
+  return drive_fixed_step(problem, options,
+                          ExpProductStep{problem, plan, problem.model().anisotropic(), K, L, Rs});
+}
+
+}  // namespace rb
