@@ -4,8 +4,8 @@
 //   Y_2 = exp(F_1 / 2) y_0,  Y_3 = exp(F_2 / 2) y_0,
 //   Y_4 = exp(F_3 - F_1 / 2) Y_2,
 //   y_1 = exp((-F_1 + 2 F_2 + 2 F_3 + 3 F_4) / 12) exp((3 F_1 + 2 F_2 + 2 F_3 - F_4) / 12) y_0,
-// products read right to left (the rightmost factor acts first). The same
-// coefficients are in OpenMC's CF4 depletion integrator. Checked here: the z
+// products read right to left (the rightmost factor acts first). OpenMC's
+// CF4 depletion integrator has the same stages. Checked here: the z
 // part sums to RK4's tableau, and for R' = hat(omega(t)) R the update's
 // commutator term (1/2)[X_2, X_1] with X_1, X_2 its two exponents is
 // h^3 [omega_1, omega_0] / 12 for omega(t) = omega_0 + t omega_1, the
