@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "bench/lib/report.hpp"
+#include "bench/lib/tableau_option.hpp"
 #include "bench/lib/trajectory_csv.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
@@ -179,10 +180,11 @@ void write_json(const nlohmann::json& j, const std::string& path) {
   if (!out) throw rb::InputError("could not write '" + path + "'", "out");
 }
 
-int run_sweep_command(const RunArgs& a) {
+int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_methods) {
   rb::SweepSpec spec = rb::preset(a.preset);
   if (!a.scenes.empty()) spec.scenes = split_names(a.scenes);
   if (!a.integrators.empty()) spec.integrators = split_names(a.integrators);
+  spec.integrators = rb::with_tableau_methods(spec.integrators, !a.integrators.empty(), tableau_methods);
   if (!a.hs.empty()) spec.hs = rb::parse_number_list(a.hs, "h");
   if (!a.tols.empty()) spec.tols = rb::parse_number_list(a.tols, "tol");
   if (a.repeats >= 0) spec.repeats = a.repeats;
@@ -231,8 +233,14 @@ int run_merge(const std::vector<std::string>& inputs, const std::string& out) {
 int main(int argc, char** argv) {
   CLI::App app{"rollbench: integrators compared on a ball rolling on z = f(x, y)"};
   app.require_subcommand(1);
+  // --tableau FILE, repeatable, on list, trajectory and run: one file per occurrence
+  std::vector<std::string> tableau_files;
+  auto add_tableau_option = [&](CLI::App* command) {
+    command->add_option("--tableau", tableau_files, "a Butcher tableau JSON file: adds rk-<name>, rkmk-<name> (repeatable)")
+        ->allow_extra_args(false);
+  };
 
-  app.add_subcommand("list", "list the registered integrators and the shipped scenes");
+  add_tableau_option(app.add_subcommand("list", "list the registered integrators and the shipped scenes"));
 
   TrajectoryArgs traj;
   CLI::App* trajectory = app.add_subcommand("trajectory", "integrate one scene with one method and write a CSV");
@@ -244,6 +252,7 @@ int main(int argc, char** argv) {
   trajectory->add_option("--dt-out", traj.dt_out, "spacing of the output rows, >= h (default: the larger of 0.01 and h)");
   trajectory->add_option("--t-end", traj.t_end, "end time (default: the scene's t_end)");
   trajectory->add_option("--out", traj.out, "the CSV file to write")->required();
+  add_tableau_option(trajectory);
 
   LandscapeArgs land;
   CLI::App* landscape = app.add_subcommand("landscape", "print z = f(x, y) of a scene on a grid (CSV x,y,z)");
@@ -268,6 +277,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--cache", run.cache, "directory for cached reference solutions");
   run_cmd->add_flag("--no-stability", run.no_stability, "skip the stability study of the preset");
   run_cmd->add_option("--out", run.out, "the report to write")->required();
+  add_tableau_option(run_cmd);
 
   std::vector<std::string> merge_inputs;
   std::string merge_out;
@@ -285,10 +295,11 @@ int main(int argc, char** argv) {
   }
 
   try {
+    const std::vector<std::string> tableau_methods = rb::add_tableau_files(tableau_files);
     if (app.got_subcommand("list")) return run_list();
     if (app.got_subcommand("trajectory")) return run_trajectory(traj);
     if (app.got_subcommand("landscape")) return run_landscape(land);
-    if (app.got_subcommand("run")) return run_sweep_command(run);
+    if (app.got_subcommand("run")) return run_sweep_command(run, tableau_methods);
     if (app.got_subcommand("merge")) return run_merge(merge_inputs, merge_out);
   } catch (const rb::InputError& e) {
     std::fprintf(stderr, "rollbench: %s\n", e.what());
