@@ -36,10 +36,15 @@ EmbeddedPair embedded_pair_of(const TableauFile& file) {
 std::vector<std::unique_ptr<Integrator>> integrators_of(const TableauFile& file) {
   const std::string& name = file.tableau.name();
   std::vector<std::unique_ptr<Integrator>> made;
-  made.push_back(std::make_unique<RungeKutta>(file.tableau, "rk-" + name));
-  made.push_back(std::make_unique<MuntheKaas>(file.tableau, "rkmk-" + name));
-  if (!file.b_err.empty()) {
+  if (file.b_err.empty()) {
+    made.push_back(std::make_unique<RungeKutta>(file.tableau, "rk-" + name));
+    made.push_back(std::make_unique<MuntheKaas>(file.tableau, "rkmk-" + name));
+  } else {
+    // at fixed steps a pair's stages after the last non-zero b (its FSAL
+    // stage) are never used: the propagating tableau leaves them out
     const EmbeddedPair pair = embedded_pair_of(file);
+    made.push_back(std::make_unique<RungeKutta>(pair.tableau(name), "rk-" + name));
+    made.push_back(std::make_unique<MuntheKaas>(pair.tableau(name), "rkmk-" + name));
     made.push_back(std::make_unique<RungeKuttaAdaptive>(pair, "rk-" + name + "-adaptive"));
     made.push_back(std::make_unique<MuntheKaasAdaptive>(pair, "rkmk-" + name + "-adaptive"));
   }

@@ -3,10 +3,13 @@
 // each kind of bad file.
 #include <gtest/gtest.h>
 
+#include "integrators/munthe_kaas.hpp"
 #include "integrators/registry.hpp"
+#include "integrators/runge_kutta.hpp"
 #include "integrators/tableau_file.hpp"
 #include "integrators/user_tableaux.hpp"
 #include "problems/input_error.hpp"
+#include "problems/scene.hpp"
 
 namespace rb {
 namespace {
@@ -90,11 +93,35 @@ TEST(TableauFile, AFileGivesRkAndRkmkAndWithBerrTheirAdaptiveVariants) {
   EXPECT_EQ(plain[1]->declared_order(), 3);
   const std::vector<std::unique_ptr<Integrator>> pair = integrators_of(parse_tableau_file(kBs32, "t.json"));
   ASSERT_EQ(pair.size(), 4u);
+  // at fixed steps the FSAL stage is left out: 3 stages, 3 rhs a step
+  EXPECT_EQ(dynamic_cast<const RungeKutta&>(*pair[0]).tableau().stages(), 3);
+  EXPECT_EQ(dynamic_cast<const MuntheKaas&>(*pair[1]).tableau().stages(), 3);
   EXPECT_EQ(pair[2]->name(), "rk-bs-adaptive");
   EXPECT_TRUE(pair[2]->adaptive());
   EXPECT_EQ(pair[3]->name(), "rkmk-bs-adaptive");
   EXPECT_TRUE(pair[3]->adaptive());
   EXPECT_EQ(pair[3]->declared_order(), 3);
+}
+
+TEST(TableauFile, TheFilesPairRunsAsTheBuiltInPairDoes) {
+  // rkmk-<name>-adaptive on Bogacki-Shampine typed as a file takes the steps
+  // of the built-in rkmk-bs32-adaptive (outputs at t_end only: no dense output needed)
+  const Problem problem = make_problem(load_scene("bowl-planar"));
+  RunOptions options;
+  options.t_end = 2.0;
+  options.rtol = options.atol = 1e-8;
+  const RunResult mine = integrators_of(parse_tableau_file(kBs32, "t.json"))[3]->integrate(problem, options);
+  const RunResult built_in = find_integrator("rkmk-bs32-adaptive").integrate(problem, options);
+  ASSERT_EQ(mine.status, Status::ok) << mine.message;
+  EXPECT_GT(mine.cost.steps, 100);
+  EXPECT_EQ(mine.cost.steps, built_in.cost.steps);
+  EXPECT_EQ(mine.cost.rejected, built_in.cost.rejected);
+  EXPECT_EQ(mine.cost.rhs_evals, built_in.cost.rhs_evals);
+  EXPECT_LT((mine.final_state - built_in.final_state).norm(), 1e-13);
+  // the flat variant: FSAL, so 3 new stages an accepted step (+1 at the start, +2 for the first step's guess)
+  const RunResult flat = integrators_of(parse_tableau_file(kBs32, "t.json"))[2]->integrate(problem, options);
+  ASSERT_EQ(flat.status, Status::ok) << flat.message;
+  EXPECT_EQ(flat.cost.rhs_evals, 3 * (flat.cost.steps + flat.cost.rejected) + 3);
 }
 
 TEST(TableauFile, TheShippedExamplesLoad) {
