@@ -62,14 +62,12 @@ double number_at(const json& v, const std::string& key, const std::string& where
   return x;
 }
 
-// An array of exactly n numbers (n < 0: any length >= 1).
-std::vector<double> numbers_at(const json& v, const std::string& key, long n, const std::string& why = {}) {
-  const std::string want = n < 0 ? "an array of numbers" : "an array of " + std::to_string(n) + " numbers";
-  if (!v.is_array()) throw InputError("must be " + want + ", not a " + v.type_name(), key);
-  if ((n >= 0 && v.size() != static_cast<std::size_t>(n)) || v.empty())
-    throw InputError("has " + std::to_string(v.size()) + " entries, not " + (n < 0 ? "at least 1" : std::to_string(n)) +
-                         why,
-                     key);
+// An array of exactly n numbers; why says where n comes from.
+std::vector<double> numbers_at(const json& v, const std::string& key, long n, const std::string& why) {
+  if (!v.is_array())
+    throw InputError("must be an array of " + std::to_string(n) + " numbers, not a " + v.type_name(), key);
+  if (v.size() != static_cast<std::size_t>(n))
+    throw InputError("has " + std::to_string(v.size()) + " entries, not " + std::to_string(n) + why, key);
   std::vector<double> out;
   for (std::size_t i = 0; i < v.size(); ++i) out.push_back(number_at(v[i], key, "entry " + std::to_string(i)));
   return out;
@@ -87,7 +85,7 @@ std::vector<std::vector<double>> square_at(const json& v, const std::string& key
       throw InputError("row " + std::to_string(i) + " has " + std::to_string(v[i].size()) + " entries, not " +
                            std::to_string(n) + " (" + key + " must be square)",
                        key);
-    rows.push_back(numbers_at(v[i], key + "[" + std::to_string(i) + "]", n));
+    rows.push_back(numbers_at(v[i], key + "[" + std::to_string(i) + "]", n, ""));
   }
   return rows;
 }

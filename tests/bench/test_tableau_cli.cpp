@@ -10,6 +10,8 @@
 #include <sstream>
 #include <sys/wait.h>
 
+#include "bench/lib/tableau_option.hpp"
+
 namespace rb {
 namespace {
 
@@ -88,6 +90,13 @@ TEST(TableauCli, RunMeasuresTheDeclaredOrderOfRkAndRkmk) {
     ASSERT_EQ(error_at.size(), 2u);
     EXPECT_LT(error_at[1e-7], error_at[1e-5] / 10);
   }
+}
+
+TEST(TableauCli, TheFilesMethodsJoinAPresetsListButNotTheUsersChoice) {
+  const std::vector<std::string> mine = {"rk-x", "rkmk-x"};
+  EXPECT_EQ(with_tableau_methods({"rk4", "rk-x"}, false, mine), (std::vector<std::string>{"rk4", "rk-x", "rkmk-x"}));
+  EXPECT_EQ(with_tableau_methods({"rk4"}, true, mine), (std::vector<std::string>{"rk4"}));
+  EXPECT_TRUE(with_tableau_methods({}, false, mine).empty());  // empty: everything registered, theirs included
 }
 
 TEST(TableauCli, ListAndTrajectoryTakeTheFileToo) {
