@@ -10,6 +10,8 @@
 #include "integrators/user_tableaux.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
+#include "tests/integrators/convergence.hpp"
+#include "tests/integrators/fixtures.hpp"
 
 namespace rb {
 namespace {
@@ -133,6 +135,25 @@ TEST(TableauFile, TheShippedExamplesLoad) {
   const TableauFile bs = load_tableau_file(dir + "bogacki-shampine.json");
   EXPECT_EQ(bs.tableau.order(), 3);
   EXPECT_EQ(bs.err_order, 2);
+}
+
+TEST(TableauFile, TheShippedExamplesConvergeAtTheirDeclaredOrder) {
+  // as the registry-wide order test measures every built-in method: the
+  // valley with a sideways start, against rkmk4 at h = 5e-5
+  RunOptions fine;
+  fine.t_end = 1.0;
+  fine.h = 5e-5;
+  const FlatState ref = find_integrator("rkmk4").integrate(testing::valley(), fine).final_state;
+  const std::string dir = std::string(RB_SOURCE_DIR) + "/examples/tableaux/";
+  for (const char* file : {"ralston3.json", "seminar-rk4.json", "bogacki-shampine.json"})
+    for (const auto& method : integrators_of(load_tableau_file(dir + file))) {
+      if (method->adaptive()) continue;
+      SCOPED_TRACE(method->name());
+      const testing::Convergence c = testing::measure_convergence(*method, testing::valley(), 1.0, ref);
+      ASSERT_GE(c.contact_fit.points, 3);
+      EXPECT_NEAR(c.contact_fit.slope, method->declared_order(), 0.2);
+      EXPECT_NEAR(c.omega_fit.slope, method->declared_order(), 0.2);
+    }
 }
 
 TEST(TableauFile, EachKindOfBadFileIsRefusedNamingTheFileAndTheKey) {
