@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "integrators/adaptive.hpp"
 #include "problems/input_error.hpp"
@@ -12,12 +13,52 @@ namespace rb {
 
 namespace {
 
-// the controller's constants, as MuntheKaasAdaptive's (see the header)
-constexpr double kSafety = 0.9;
-constexpr double kFacMin = 0.2;
-constexpr double kFacMax = 10.0;
-// non-finite trial steps a run tolerates before it is called diverged
-constexpr int kMaxNonFiniteTrials = 10;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The PI controller of MuntheKaasAdaptive (see the header), as a part of its
+// own: it decides on an attempt's error norm and sets the next step.
+class PiController {
+ public:
+  explicit PiController(int error_order)
+      : k_(error_order), alpha_(0.7 / error_order), beta_(0.4 / error_order) {}
+
+  // err: the attempt's error norm (1 = the tolerance); h becomes the next step
+  Attempt decide(double err, double t, double& h) {
+    if (!std::isfinite(err)) {
+      // a trial step past where F is finite was too large: shrink it hard;
+      // again and again, and the run has diverged
+      if (++nonfinite_trials_ > kMaxNonFiniteTrials) {
+        char text[160];
+        std::snprintf(text, sizeof text, "the state is not finite beyond t = %.9g (%d trial steps past it, the last of %.3g)",
+                      t, nonfinite_trials_, h);
+        throw StepFailure(Status::diverged, text);
+      }
+      return reject(h, kFacMin);
+    }
+    if (err > 1.0) return reject(h, std::max(kFacMin, kSafety * std::pow(err, -1.0 / k_)));
+    const double fac = kSafety * std::pow(std::max(err, 1e-10), -alpha_) * std::pow(err_prev_, beta_);
+    err_prev_ = std::max(err, 1e-4);
+    h *= std::clamp(fac, kFacMin, rejected_last_ ? 1.0 : kFacMax);
+    rejected_last_ = false;
+    return Attempt::accepted;
+  }
+
+ private:
+  static constexpr double kSafety = 0.9, kFacMin = 0.2, kFacMax = 10.0;
+  static constexpr int kMaxNonFiniteTrials = 10;
+
+  Attempt reject(double& h, double factor) {
+    h *= factor;
+    rejected_last_ = true;
+    return Attempt::rejected;
+  }
+
+  int k_;
+  double alpha_, beta_;
+  double err_prev_ = 1e-4;
+  bool rejected_last_ = false;
+  int nonfinite_trials_ = 0;
+};
 
 // The pair's steps for drive_adaptive (see integrators/adaptive.hpp).
 class FlatPairStepper {
@@ -25,8 +66,7 @@ class FlatPairStepper {
   static constexpr bool dense_output = false;
 
   FlatPairStepper(const Problem& problem, const EmbeddedPair& pair, const Tolerances& tol)
-      : problem_(&problem), pair_(&pair), tol_(tol), alpha_(0.7 / pair.error_order), beta_(0.4 / pair.error_order),
-        y_(problem.y0()) {}
+      : problem_(&problem), pair_(&pair), tol_(tol), controller_(pair.error_order), y_(problem.y0()) {}
 
   Attempt attempt(double t, double& h, Cost& cost) {
     const EmbeddedPair& p = *pair_;
@@ -43,28 +83,8 @@ class FlatPairStepper {
       ++cost.rhs_evals;
     }
     y_new_ = p.fsal < p.stages ? stage_for(p.fsal, h) : FlatState(y_ + h * combine(p.b.data(), p.stages));
-    const double err = error_norm(h);
-    if (!std::isfinite(err) || !y_new_.allFinite()) {
-      // a trial step past where F is finite was too large: shrink it hard
-      if (++nonfinite_trials_ > kMaxNonFiniteTrials) {
-        char text[160];
-        std::snprintf(text, sizeof text, "the state is not finite beyond t = %.9g (%d trial steps past it, the last of %.3g)",
-                      t, nonfinite_trials_, h);
-        throw StepFailure(Status::diverged, text);
-      }
-      h *= kFacMin;
-      rejected_last_ = true;
-      return Attempt::rejected;
-    }
-    if (err > 1.0) {
-      h *= std::max(kFacMin, kSafety * std::pow(err, -1.0 / p.error_order));
-      rejected_last_ = true;
-      return Attempt::rejected;
-    }
-    const double fac = kSafety * std::pow(std::max(err, 1e-10), -alpha_) * std::pow(err_prev_, beta_);
-    err_prev_ = std::max(err, 1e-4);
-    h *= std::clamp(fac, kFacMin, rejected_last_ ? 1.0 : kFacMax);
-    rejected_last_ = false;
+    const double err = y_new_.allFinite() ? error_norm(h) : kNaN;
+    if (controller_.decide(err, t, h) == Attempt::rejected) return Attempt::rejected;
     y_ = y_new_;
     // the next step's first stage
     if (p.fsal < p.stages) {
@@ -103,13 +123,10 @@ class FlatPairStepper {
   const Problem* problem_;
   const EmbeddedPair* pair_;
   Tolerances tol_;
-  double alpha_, beta_;
+  PiController controller_;
   FlatState y_, y_new_, stage_;
   std::array<FlatState, kMaxStages> k_;
   bool have_first_ = false;
-  bool rejected_last_ = false;
-  int nonfinite_trials_ = 0;
-  double err_prev_ = 1e-4;
 };
 
 }  // namespace

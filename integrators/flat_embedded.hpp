@@ -6,7 +6,8 @@
 //
 // - Local error h sum_i e_i k_i, each component against
 //   atol + rtol max(|y_n,i|, |y_n+1,i|); norm: root mean square (Hairer's).
-// - PI controller (Gustafsson) with MuntheKaasAdaptive's constants: after an
+// - PI controller (Gustafsson) with MuntheKaasAdaptive's constants, a part of
+//   its own in flat_embedded.cpp (to move onto the shared controllers): after an
 //   accepted step h_new = h * 0.9 err^(-0.7/k) err_prev^(0.4/k), the factor
 //   kept in [0.2, 10] and at most 1 right after a rejection; a rejection
 //   shrinks by 0.9 err^(-1/k), at least to 0.2 h; k = the pair's error_order.

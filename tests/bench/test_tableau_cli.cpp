@@ -4,43 +4,18 @@
 // too; a bad file exits with 2 and names the file, the key and the problem.
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
-#include <sys/wait.h>
 
 #include "bench/lib/tableau_option.hpp"
+#include "tests/robustness/helpers.hpp"
 
 namespace rb {
 namespace {
 
 namespace fs = std::filesystem;
+using robustness::slurp;
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("rb-tableau-cli-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
-}
-
-std::string text_of(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-struct Result {
-  int code;
-  std::string out, err;
-};
-
-Result rollbench_with(const std::string& args) {
-  const std::string command = std::string(RB_ROLLBENCH_EXE) + " " + args + " > " + scratch("stdout").string() +
-                              " 2> " + scratch("stderr").string();
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text_of(scratch("stdout")), text_of(scratch("stderr"))};
-}
+fs::path scratch(const std::string& name) { return robustness::temp_path("tableau-" + name); }
 
 fs::path tableau_file(const std::string& name, const std::string& text) {
   const fs::path p = scratch(name);
@@ -61,13 +36,13 @@ const char* const kBs32 = R"({"name": "bs-file", "order": 3, "err_order": 2,
 
 TEST(TableauCli, RunMeasuresTheDeclaredOrderOfRkAndRkmk) {
   const fs::path report = scratch("report.json");
-  const Result r = rollbench_with("run --preset quick --scenes bowl-planar --h 2^-3..2^-7 --tol 1e-5,1e-7 "
+  const robustness::CliOutcome r = robustness::rollbench("run --preset quick --scenes bowl-planar --h 2^-3..2^-7 --tol 1e-5,1e-7 "
                                   "--repeats 1 --no-stability --tableau " + tableau_file("ral3.json", kRalston).string() +
                                   " --tableau " + tableau_file("bs.json", kBs32).string() +
                                   " --integrators rk-ral3,rkmk-ral3,rk-bs-file,rkmk-bs-file,rk-bs-file-adaptive,"
                                   "rkmk-bs-file-adaptive --out " + report.string());
   ASSERT_EQ(r.code, 0) << r.err;
-  const nlohmann::json j = nlohmann::json::parse(text_of(report));
+  const nlohmann::json j = nlohmann::json::parse(slurp(report));
   std::map<std::string, const nlohmann::json*> orders;
   for (const auto& o : j.at("orders")) orders[o.at("integrator").get<std::string>()] = &o;
   for (const char* name : {"rk-ral3", "rkmk-ral3", "rk-bs-file", "rkmk-bs-file"}) {
@@ -101,11 +76,11 @@ TEST(TableauCli, TheFilesMethodsJoinAPresetsListButNotTheUsersChoice) {
 
 TEST(TableauCli, ListAndTrajectoryTakeTheFileToo) {
   const std::string file = tableau_file("ral3.json", kRalston).string();
-  const Result list = rollbench_with("list --tableau " + file);
+  const robustness::CliOutcome list = robustness::rollbench("list --tableau " + file);
   ASSERT_EQ(list.code, 0) << list.err;
   EXPECT_NE(list.out.find("  rk-ral3 "), std::string::npos);
   EXPECT_NE(list.out.find("  rkmk-ral3 "), std::string::npos);
-  const Result traj = rollbench_with("trajectory plane --tableau " + file + " --integrator rkmk-ral3 --h 0.01 --out " +
+  const robustness::CliOutcome traj = robustness::rollbench("trajectory plane --tableau " + file + " --integrator rkmk-ral3 --h 0.01 --out " +
                                      scratch("ral3.csv").string());
   ASSERT_EQ(traj.code, 0) << traj.err;
   EXPECT_NE(traj.out.find("rkmk-ral3 on plane: ok"), std::string::npos) << traj.out;
@@ -115,7 +90,7 @@ TEST(TableauCli, ABadFileExitsWithTwoNamingTheFileKeyAndTree) {
   const std::string bad = tableau_file("bad.json", std::string(kRalston).replace(std::string(kRalston).find("\"order\": 3"),
                                                                                    10, "\"order\": 4"))
                               .string();
-  Result r = rollbench_with("list --tableau " + bad);
+  robustness::CliOutcome r = robustness::rollbench("list --tableau " + bad);
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err, "rollbench: tableau file '" + bad +
                        "': 'order': tableau 'ral3' declares order 4 but satisfies the order conditions only to order 3 "
@@ -123,18 +98,18 @@ TEST(TableauCli, ABadFileExitsWithTwoNamingTheFileKeyAndTree) {
   // a name that is taken: rkmk-bs32-adaptive is built in
   const std::string clash =
       tableau_file("clash.json", std::string(kBs32).replace(std::string(kBs32).find("bs-file"), 7, "bs32")).string();
-  r = rollbench_with("run --preset quick --tableau " + clash + " --out " + scratch("never.json").string());
+  r = robustness::rollbench("run --preset quick --tableau " + clash + " --out " + scratch("never.json").string());
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err, "rollbench: tableau file '" + clash +
                        "': 'name': integrator 'rkmk-bs32-adaptive' is already registered; rename the tableau\n");
   // the same file twice clashes with itself
   const std::string ok = tableau_file("ral3.json", kRalston).string();
-  r = rollbench_with("list --tableau " + ok + " --tableau " + ok);
+  r = robustness::rollbench("list --tableau " + ok + " --tableau " + ok);
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err, "rollbench: tableau file '" + ok + "': 'name': integrator 'rk-ral3' is already registered; "
                    "rename the tableau\n");
   // a file that is not there
-  r = rollbench_with("trajectory plane --tableau /nonexistent.json --integrator rk4 --h 0.1 --out " +
+  r = robustness::rollbench("trajectory plane --tableau /nonexistent.json --integrator rk4 --h 0.1 --out " +
                      scratch("x.csv").string());
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err, "rollbench: 'tableau': cannot read the tableau file '/nonexistent.json'\n");

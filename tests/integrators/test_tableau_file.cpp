@@ -12,6 +12,7 @@
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"
 #include "tests/integrators/fixtures.hpp"
+#include "tests/robustness/helpers.hpp"
 
 namespace rb {
 namespace {
@@ -124,6 +125,26 @@ TEST(TableauFile, TheFilesPairRunsAsTheBuiltInPairDoes) {
   const RunResult flat = integrators_of(parse_tableau_file(kBs32, "t.json"))[2]->integrate(problem, options);
   ASSERT_EQ(flat.status, Status::ok) << flat.message;
   EXPECT_EQ(flat.cost.rhs_evals, 3 * (flat.cost.steps + flat.cost.rejected) + 3);
+}
+
+TEST(TableauFile, TheFilesMethodsEndEachStopSceneWithItsStatus) {
+  // as tests/robustness/test_failures.cpp drives every family: a non-finite
+  // trial step is shrunk, not the end, until the state itself stops
+  const std::vector<std::unique_ptr<Integrator>> methods = integrators_of(parse_tableau_file(kBs32, "t.json"));
+  const std::pair<const char*, Status> cases[] = {{"stop-nonfinite.json", Status::diverged},
+                                                  {"stop-lift-off.json", Status::lift_off},
+                                                  {"stop-curvature.json", Status::curvature},
+                                                  {"stop-domain.json", Status::domain}};
+  for (const auto& method : methods)
+    for (const auto& [file, status] : cases) {
+      SCOPED_TRACE(method->name() + " on " + file);
+      const Problem p = robustness::data_problem(file);
+      const RunResult r = method->integrate(p, robustness::options_for(*method, p.t_end(), 1e-3, 1e-8, 0.01));
+      EXPECT_EQ(status_name(r.status), status_name(status)) << r.message;
+      EXPECT_GT(r.stop_time, 0.0);
+      EXPECT_LT(r.stop_time, p.t_end());
+      EXPECT_TRUE(r.final_state.allFinite());
+    }
 }
 
 TEST(TableauFile, TheShippedExamplesLoad) {
