@@ -154,7 +154,10 @@ Tableau make_tableau(const std::string& name, const std::optional<int>& order, c
     const Tableau first(name, 1, k.a, k.b, k.c);
     return Tableau(name, first.satisfied_order(), k.a, k.b, k.c);
   } catch (const InputError& e) {
-    throw InputError(e.message(), k.file_key(e.key()));
+    if (order || e.key() != "order") throw InputError(e.message(), k.file_key(e.key()));
+    // no order was declared: the weights fail order 1 itself
+    const OrderConditionCheck check = check_order_conditions(k.stages(), k.a, k.b, k.c, 1);
+    throw InputError("the weights satisfy no order condition (" + describe(*check.failure) + ")", k.file_key("b"));
   }
 }
 

@@ -217,6 +217,9 @@ TEST(TableauFile, EachKindOfBadFileIsRefusedNamingTheFileAndTheKey) {
   EXPECT_EQ(error_of(with(kRalston3, "0.4444444444444444]", "0.4444]")),
             f + "'order': tableau 'ralston3' declares order 3 but satisfies the order conditions only to order 0 "
                 "(tree τ of order 1: Phi = 0.9999555556, 1/gamma = 1, residual -4.444e-05)");
+  EXPECT_EQ(error_of(with(with(kRalston3, R"("order": 3,)", ""), "0.4444444444444444]", "0.4444]")),
+            f + "'b': the weights satisfy no order condition (tree τ of order 1: Phi = 0.9999555556, 1/gamma = 1, "
+                "residual -4.444e-05)");
   EXPECT_EQ(error_of(with(kBs32, R"("err_order": 2)", R"("err_order": 3)")),
             f + "'b_err': the embedded weights declare err_order 3 but satisfy the order conditions only to order 2 "
                 "(tree [τ²] of order 3: Phi = 0.375, 1/gamma = 0.3333333333, residual 4.167e-02)");
