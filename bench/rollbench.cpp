@@ -12,6 +12,7 @@
 #include "bench/lib/report.hpp"
 #include "bench/lib/score.hpp"
 #include "bench/lib/stepper_option.hpp"
+#include "bench/lib/tableau_option.hpp"
 #include "bench/lib/trajectory_csv.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
@@ -182,10 +183,11 @@ void write_json(const nlohmann::json& j, const std::string& path) {
   if (!out) throw rb::InputError("could not write '" + path + "'", "out");
 }
 
-int run_sweep_command(const RunArgs& a) {
+int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_methods) {
   rb::SweepSpec spec = rb::preset(a.preset);
   if (!a.scenes.empty()) spec.scenes = split_names(a.scenes);
   if (!a.integrators.empty()) spec.integrators = split_names(a.integrators);
+  spec.integrators = rb::with_tableau_methods(spec.integrators, !a.integrators.empty(), tableau_methods);
   if (!a.hs.empty()) spec.hs = rb::parse_number_list(a.hs, "h");
   if (!a.tols.empty()) spec.tols = rb::parse_number_list(a.tols, "tol");
   if (a.repeats >= 0) spec.repeats = a.repeats;
@@ -264,12 +266,19 @@ int run_merge(const std::vector<std::string>& inputs, const std::string& out) {
 int main(int argc, char** argv) {
   CLI::App app{"rollbench: integrators compared on a ball rolling on z = f(x, y)"};
   app.require_subcommand(1);
+  // --tableau FILE, repeatable, on list, trajectory and run: one file per occurrence
+  std::vector<std::string> tableau_files;
+  auto add_tableau_option = [&](CLI::App* command) {
+    command->add_option("--tableau", tableau_files, "a Butcher tableau JSON file: adds rk-<name>, rkmk-<name> (repeatable)")
+        ->allow_extra_args(false);
+  };
 
   CLI::App* list = app.add_subcommand("list", "list the registered integrators and the shipped scenes");
   // --stepper PATH.so (repeatable): a stepper library (integrators/plugin/rollbench_stepper.h)
   std::vector<std::string> steppers;
   const char* stepper_help = "a stepper library built against integrators/plugin/rollbench_stepper.h (repeatable)";
   list->add_option("--stepper", steppers, stepper_help);
+  add_tableau_option(list);
 
   TrajectoryArgs traj;
   CLI::App* trajectory = app.add_subcommand("trajectory", "integrate one scene with one method and write a CSV");
@@ -282,6 +291,7 @@ int main(int argc, char** argv) {
   trajectory->add_option("--t-end", traj.t_end, "end time (default: the scene's t_end)");
   trajectory->add_option("--out", traj.out, "the CSV file to write")->required();
   trajectory->add_option("--stepper", steppers, stepper_help);
+  add_tableau_option(trajectory);
 
   LandscapeArgs land;
   CLI::App* landscape = app.add_subcommand("landscape", "print z = f(x, y) of a scene on a grid (CSV x,y,z)");
@@ -307,6 +317,7 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--no-stability", run.no_stability, "skip the stability study of the preset");
   run_cmd->add_option("--out", run.out, "the report to write")->required();
   run_cmd->add_option("--stepper", steppers, stepper_help);
+  add_tableau_option(run_cmd);
 
   std::vector<std::string> merge_inputs;
   std::string merge_out;
@@ -337,10 +348,11 @@ int main(int argc, char** argv) {
 
   try {
     rb::register_plugin_steppers(steppers);
+    const std::vector<std::string> tableau_methods = rb::add_tableau_files(tableau_files);
     if (app.got_subcommand("list")) return run_list();
     if (app.got_subcommand("trajectory")) return run_trajectory(traj);
     if (app.got_subcommand("landscape")) return run_landscape(land);
-    if (app.got_subcommand("run")) return run_sweep_command(run);
+    if (app.got_subcommand("run")) return run_sweep_command(run, tableau_methods);
     if (app.got_subcommand("merge")) return run_merge(merge_inputs, merge_out);
     if (app.got_subcommand("score")) return run_score(score);
   } catch (const rb::InputError& e) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "integrators/order_conditions.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {
@@ -30,41 +31,21 @@ Tableau::Tableau(std::string name, int order, std::vector<double> a, std::vector
     if (std::abs(row - c_[i]) > 1e-12)
       throw InputError("c[" + std::to_string(i) + "] must equal the sum of row " + std::to_string(i) + " of A", "c");
   }
-  const int p = satisfied_order();
-  if (p < std::min(order_, 4))
+  // every rooted tree up to the declared order (integrators/order_conditions.hpp)
+  if (order_ > kMaxConditionOrder)
+    throw InputError("order conditions are checked up to order " + std::to_string(kMaxConditionOrder) +
+                         ", the declared order is " + std::to_string(order_),
+                     "order");
+  const OrderConditionCheck check = check_order_conditions(stages(), a_, b_, c_, order_);
+  if (check.failure)
     throw InputError("tableau '" + name_ + "' declares order " + std::to_string(order_) +
-                         " but satisfies the order conditions only to order " + std::to_string(p),
+                         " but satisfies the order conditions only to order " + std::to_string(check.satisfied_order) +
+                         " (" + describe(*check.failure) + ")",
                      "order");
 }
 
 int Tableau::satisfied_order() const {
-  const int s = stages();
-  auto sum = [&](auto&& term) {
-    double total = 0.0;
-    for (int i = 0; i < s; ++i) total += term(i);
-    return total;
-  };
-  // (A c)_i and (A c^2)_i and (A A c)_i
-  std::vector<double> ac(s, 0.0), ac2(s, 0.0), aac(s, 0.0);
-  for (int i = 0; i < s; ++i)
-    for (int j = 0; j < s; ++j) {
-      ac[i] += a(i, j) * c(j);
-      ac2[i] += a(i, j) * c(j) * c(j);
-    }
-  for (int i = 0; i < s; ++i)
-    for (int j = 0; j < s; ++j) aac[i] += a(i, j) * ac[j];
-  auto holds = [](double value, double expected) { return std::abs(value - expected) <= 1e-12; };
-  if (!holds(sum([&](int i) { return b(i); }), 1.0)) return 0;
-  if (!holds(sum([&](int i) { return b(i) * c(i); }), 0.5)) return 1;
-  if (!holds(sum([&](int i) { return b(i) * c(i) * c(i); }), 1.0 / 3.0) ||
-      !holds(sum([&](int i) { return b(i) * ac[i]; }), 1.0 / 6.0))
-    return 2;
-  if (!holds(sum([&](int i) { return b(i) * c(i) * c(i) * c(i); }), 0.25) ||
-      !holds(sum([&](int i) { return b(i) * c(i) * ac[i]; }), 0.125) ||
-      !holds(sum([&](int i) { return b(i) * ac2[i]; }), 1.0 / 12.0) ||
-      !holds(sum([&](int i) { return b(i) * aac[i]; }), 1.0 / 24.0))
-    return 3;
-  return 4;
+  return check_order_conditions(stages(), a_, b_, c_, kMaxConditionOrder).satisfied_order;
 }
 
 }  // namespace rb

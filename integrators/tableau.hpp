@@ -1,7 +1,7 @@
 #pragma once
 // An explicit Butcher tableau that checks itself: strictly lower-triangular
-// A, c_i = sum_j a_ij, and the order conditions up to its declared order (up
-// to 4, the conditions written out below; higher orders are checked to 4).
+// A, c_i = sum_j a_ij, and the order conditions of every rooted tree up to
+// its declared order (integrators/order_conditions.hpp).
 #include <string>
 #include <vector>
 
@@ -20,7 +20,7 @@ class Tableau {
   double b(int i) const { return b_[static_cast<std::size_t>(i)]; }
   double c(int i) const { return c_[static_cast<std::size_t>(i)]; }
 
-  // The largest p <= 4 for which every order condition holds to 1e-12.
+  // The largest p <= 10 (kMaxConditionOrder) whose order conditions hold to 1e-12.
   int satisfied_order() const;
 
  private:

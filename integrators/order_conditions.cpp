@@ -1,0 +1,120 @@
+#include "integrators/order_conditions.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <stdexcept>
+
+namespace rb {
+
+namespace {
+
+// "²" .. "⁹": a repeated subtree in a name, as Butcher writes [τ²]
+std::string superscript(int n) {
+  static const char* const digits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  std::string s;
+  for (const char ch : std::to_string(n)) s += digits[ch - '0'];
+  return s;
+}
+
+// [child child ...], identical children (adjacent, the list is sorted) as powers
+std::string bracket_name(const std::vector<RootedTree>& trees, const std::vector<int>& children) {
+  if (children.empty()) return "τ";
+  std::string name = "[";
+  for (std::size_t k = 0; k < children.size();) {
+    std::size_t run = k;
+    while (run < children.size() && children[run] == children[k]) ++run;
+    name += trees[static_cast<std::size_t>(children[k])].name;
+    if (run - k > 1) name += superscript(static_cast<int>(run - k));
+    k = run;
+  }
+  return name + "]";
+}
+
+// A tree of order n is a root whose subtrees form a multiset of smaller
+// trees with orders summing to n - 1: choosing them in non-decreasing index
+// order makes each multiset, hence each tree, appear exactly once.
+std::vector<RootedTree> enumerate_trees(int max_order) {
+  std::vector<RootedTree> trees = {{1, {}, 1.0, "τ"}};
+  for (int n = 2; n <= max_order; ++n) {
+    const std::size_t smaller = trees.size();
+    std::vector<int> picked;
+    std::function<void(int, std::size_t)> pick = [&](int left, std::size_t from) {
+      if (left == 0) {
+        double density = n;
+        for (int child : picked) density *= trees[static_cast<std::size_t>(child)].density;
+        RootedTree tree{n, picked, density, bracket_name(trees, picked)};
+        trees.push_back(std::move(tree));
+        return;
+      }
+      for (std::size_t i = from; i < smaller; ++i)
+        if (trees[i].order <= left) {
+          picked.push_back(static_cast<int>(i));
+          pick(left - trees[i].order, i);
+          picked.pop_back();
+        }
+    };
+    pick(n - 1, 0);
+  }
+  return trees;
+}
+
+}  // namespace
+
+const std::vector<RootedTree>& rooted_trees() {
+  static const std::vector<RootedTree> trees = enumerate_trees(kMaxConditionOrder);
+  return trees;
+}
+
+OrderConditionCheck check_order_conditions(int stages, std::span<const double> a, std::span<const double> w,
+                                           std::span<const double> c, int max_order, double theta) {
+  const auto s = static_cast<std::size_t>(stages);
+  if (stages < 1 || a.size() != s * s || w.size() != s || c.size() != s)
+    throw std::invalid_argument("check_order_conditions: a must be s x s, w and c of size s");
+  if (max_order < 1 || max_order > kMaxConditionOrder)
+    throw std::invalid_argument("check_order_conditions: max_order must be 1 to " +
+                                std::to_string(kMaxConditionOrder));
+  const std::vector<RootedTree>& trees = rooted_trees();
+  // per tree t: Phi_i(t) at each stage, and (A Phi(t))_i, the factor t
+  // contributes to a parent's Phi_i (c_i for t = tau)
+  std::vector<std::vector<double>> a_phi;
+  a_phi.reserve(trees.size());
+  std::vector<double> phi(s);
+  OrderConditionCheck check;
+  for (const RootedTree& tree : trees) {
+    if (tree.order > max_order) break;
+    for (std::size_t i = 0; i < s; ++i) {
+      double p = 1.0;
+      for (int child : tree.children) p *= a_phi[static_cast<std::size_t>(child)][i];
+      phi[i] = p;
+    }
+    double weight = 0.0;
+    for (std::size_t i = 0; i < s; ++i) weight += w[i] * phi[i];
+    const double expected = std::pow(theta, tree.order) / tree.density;
+    if (!(std::abs(weight - expected) <= kOrderConditionTolerance)) {
+      check.satisfied_order = tree.order - 1;
+      check.failure = OrderConditionFailure{tree.order, tree.name, weight, expected, weight - expected};
+      return check;
+    }
+    std::vector<double> next(s, 0.0);
+    for (std::size_t i = 0; i < s; ++i) {
+      if (tree.children.empty()) {
+        next[i] = c[i];
+        continue;
+      }
+      for (std::size_t j = 0; j < s; ++j) next[i] += a[i * s + j] * phi[j];
+    }
+    a_phi.push_back(std::move(next));
+  }
+  check.satisfied_order = max_order;
+  return check;
+}
+
+std::string describe(const OrderConditionFailure& failure) {
+  char numbers[160];
+  std::snprintf(numbers, sizeof numbers, ": Phi = %.10g, 1/gamma = %.10g, residual %.3e", failure.weight,
+                failure.expected, failure.residual);
+  return "tree " + failure.tree + " of order " + std::to_string(failure.order) + numbers;
+}
+
+}  // namespace rb

@@ -1,0 +1,63 @@
+#pragma once
+// Butcher's order conditions of an explicit Runge-Kutta method, one per
+// rooted tree: a method has order p when sum_i b_i Phi_i(t) = 1 / gamma(t)
+// for every rooted tree t with at most p vertices (Hairer, Norsett & Wanner,
+// Solving ODEs I, II.2). The checker works on plain data (stages, A
+// row-major, b, c) so that any tableau type, a tableau file or a test can
+// call it.
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace rb {
+
+// Rooted trees are enumerated up to this order (1205 trees; 200 up to 8).
+inline constexpr int kMaxConditionOrder = 10;
+
+// An order condition holds when |Phi(t) - 1/gamma(t)| is at most this.
+inline constexpr double kOrderConditionTolerance = 1e-12;
+
+struct RootedTree {
+  int order = 1;              // |t|, the number of vertices
+  std::vector<int> children;  // the root's subtrees as indices into rooted_trees(), non-decreasing
+  double density = 1.0;       // gamma(t) = |t| times the children's densities
+  std::string name;           // bracket notation: tau, [tau], [tau^2], [tau[tau]], ... (Unicode)
+};
+
+// Every rooted tree of order 1 to kMaxConditionOrder, each once, in order of
+// increasing order (1, 1, 2, 4, 9, 20, 48, 115, 286, 719 trees).
+const std::vector<RootedTree>& rooted_trees();
+
+// The first tree whose condition fails.
+struct OrderConditionFailure {
+  int order = 0;          // of the tree
+  std::string tree;       // its name, as RootedTree::name
+  double weight = 0.0;    // Phi(t) = sum_i w_i Phi_i(t)
+  double expected = 0.0;  // theta^|t| / gamma(t)
+  double residual = 0.0;  // weight - expected
+};
+
+struct OrderConditionCheck {
+  // the highest p <= max_order whose conditions (all trees of order <= p) hold
+  int satisfied_order = 0;
+  // the first failing tree of order satisfied_order + 1; none when
+  // satisfied_order == max_order
+  std::optional<OrderConditionFailure> failure;
+};
+
+// Checks the weights w of an explicit method with nodes c and matrix a (s x s,
+// row-major, a_ij = a[i * s + j]) against every tree up to max_order
+// (1 .. kMaxConditionOrder). The stage weights Phi_i use c for the subtree
+// tau (sum_j a_ij = c_i, which a tableau checks beforehand). theta != 1
+// checks a continuous extension's weights b_i(theta) against
+// theta^|t| / gamma(t) instead (dense output). Throws std::invalid_argument
+// when the sizes do not fit.
+OrderConditionCheck check_order_conditions(int stages, std::span<const double> a, std::span<const double> w,
+                                           std::span<const double> c, int max_order, double theta = 1.0);
+
+// "tree [tau^2] of order 3: Phi = 0.3, 1/gamma = 0.333333, residual -3.3e-02"
+// (theta^|t|/gamma for a continuous extension).
+std::string describe(const OrderConditionFailure& failure);
+
+}  // namespace rb

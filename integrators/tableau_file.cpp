@@ -1,0 +1,227 @@
+#include "integrators/tableau_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "integrators/order_conditions.hpp"
+#include "problems/input_error.hpp"
+
+namespace rb {
+
+namespace {
+
+using json = nlohmann::json;
+
+const std::vector<std::string> kKnownKeys = {"name", "order", "c", "A", "b", "b_err", "err_order", "source", "butcher"};
+
+std::string list_of(const std::vector<std::string>& names) {
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+// nlohmann's message without its "[json.exception.parse_error.101] " prefix
+std::string without_prefix(const std::string& what) {
+  const auto p = what.find("] ");
+  return p == std::string::npos ? what : what.substr(p + 2);
+}
+
+// The document, with a key given twice refused (nlohmann keeps the last one
+// silently) and a number beyond a double (1e400) named by its key.
+json parse_json_text(std::string_view text) {
+  std::vector<std::set<std::string>> seen;  // the keys of each object being read
+  std::string last_key;
+  const json::parser_callback_t track = [&](int, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::object_start) seen.emplace_back();
+    if (event == json::parse_event_t::object_end) seen.pop_back();
+    if (event == json::parse_event_t::key) {
+      last_key = parsed.get<std::string>();
+      if (!seen.back().insert(last_key).second) throw InputError("the key appears more than once", last_key);
+    }
+    return true;
+  };
+  try {
+    return json::parse(text, track);
+  } catch (const json::parse_error& e) {
+    throw InputError("not JSON: " + without_prefix(e.what()));
+  } catch (const json::out_of_range& e) {
+    throw InputError("not a finite number: " + without_prefix(e.what()), last_key);
+  }
+}
+
+double number_at(const json& v, const std::string& key, const std::string& where) {
+  if (!v.is_number()) throw InputError(where + " is a " + v.type_name() + ", not a number", key);
+  const double x = v.get<double>();
+  if (!std::isfinite(x)) throw InputError(where + " is not finite", key);
+  return x;
+}
+
+// An array of exactly n numbers; why says where n comes from.
+std::vector<double> numbers_at(const json& v, const std::string& key, long n, const std::string& why) {
+  if (!v.is_array())
+    throw InputError("must be an array of " + std::to_string(n) + " numbers, not a " + v.type_name(), key);
+  if (v.size() != static_cast<std::size_t>(n))
+    throw InputError("has " + std::to_string(v.size()) + " entries, not " + std::to_string(n) + why, key);
+  std::vector<double> out;
+  for (std::size_t i = 0; i < v.size(); ++i) out.push_back(number_at(v[i], key, "entry " + std::to_string(i)));
+  return out;
+}
+
+// A square matrix: rows arrays of as many numbers as there are rows.
+std::vector<std::vector<double>> square_at(const json& v, const std::string& key) {
+  if (!v.is_array() || v.empty()) throw InputError("must be an array of rows (arrays of numbers)", key);
+  const long n = static_cast<long>(v.size());
+  std::vector<std::vector<double>> rows;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (!v[i].is_array())
+      throw InputError("row " + std::to_string(i) + " is a " + v[i].type_name() + ", not an array of numbers", key);
+    if (v[i].size() != v.size())
+      throw InputError("row " + std::to_string(i) + " has " + std::to_string(v[i].size()) + " entries, not " +
+                           std::to_string(n) + " (" + key + " must be square)",
+                       key);
+    rows.push_back(numbers_at(v[i], key + "[" + std::to_string(i) + "]", n, ""));
+  }
+  return rows;
+}
+
+int integer_at(const json& v, const std::string& key, int lo, int hi) {
+  const double x = number_at(v, key, key);
+  if (x != std::floor(x) || x < lo || x > hi)
+    throw InputError("must be an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ", not " +
+                         v.dump(),
+                     key);
+  return static_cast<int>(x);
+}
+
+bool registry_safe(const std::string& name) {
+  return !name.empty() && name.size() <= 40 && std::all_of(name.begin(), name.end(), [](char ch) {
+    return std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' || ch == '.';
+  });
+}
+
+// A, b, c as the file gives them: separately, or as the seminar's matrix.
+struct Coefficients {
+  std::vector<double> a, b, c;  // a: s x s row-major
+  bool butcher = false;
+  int stages() const { return static_cast<int>(b.size()); }
+  // the file's key a Tableau error about key ("a", "b", "c") belongs to
+  std::string file_key(const std::string& key) const {
+    if (butcher && (key == "a" || key == "b" || key == "c")) return "butcher";
+    return key == "a" ? "A" : key;
+  }
+};
+
+Coefficients read_coefficients(const json& doc) {
+  Coefficients k;
+  const bool separate = doc.contains("c") || doc.contains("A") || doc.contains("b");
+  if (doc.contains("butcher")) {
+    if (separate) throw InputError("give either butcher or c, A and b, not both", "butcher");
+    // rows [c_i, a_i1 ... a_is], then [0, b_1 ... b_s]
+    const std::vector<std::vector<double>> m = square_at(doc["butcher"], "butcher");
+    const std::size_t s = m.size() - 1;
+    if (s == 0) throw InputError("needs at least 2 rows: [c_1, a_11], then [0, b_1]", "butcher");
+    if (m[s][0] != 0.0) throw InputError("the last row holds [0, b_1 ... b_s]: its first entry must be 0", "butcher");
+    for (std::size_t i = 0; i < s; ++i) {
+      k.c.push_back(m[i][0]);
+      k.a.insert(k.a.end(), m[i].begin() + 1, m[i].end());
+    }
+    k.b.assign(m[s].begin() + 1, m[s].end());
+    k.butcher = true;
+    return k;
+  }
+  for (const char* key : {"c", "A", "b"})
+    if (!doc.contains(key)) throw InputError("missing required key (or give butcher instead of c, A and b)", key);
+  const std::vector<std::vector<double>> a = square_at(doc["A"], "A");
+  const long s = static_cast<long>(a.size());
+  for (const auto& row : a) k.a.insert(k.a.end(), row.begin(), row.end());
+  const std::string why = " (A has " + std::to_string(s) + " rows)";
+  k.c = numbers_at(doc["c"], "c", s, why);
+  k.b = numbers_at(doc["b"], "b", s, why);
+  return k;
+}
+
+// The tableau, checked by Tableau itself; without a declared order, the
+// highest whose conditions hold (order 1 is checked first: it must hold).
+Tableau make_tableau(const std::string& name, const std::optional<int>& order, const Coefficients& k) {
+  try {
+    if (order) return Tableau(name, *order, k.a, k.b, k.c);
+    const Tableau first(name, 1, k.a, k.b, k.c);
+    return Tableau(name, first.satisfied_order(), k.a, k.b, k.c);
+  } catch (const InputError& e) {
+    if (order || e.key() != "order") throw InputError(e.message(), k.file_key(e.key()));
+    // no order was declared: the weights fail order 1 itself
+    const OrderConditionCheck check = check_order_conditions(k.stages(), k.a, k.b, k.c, 1);
+    throw InputError("the weights satisfy no order condition (" + describe(*check.failure) + ")", k.file_key("b"));
+  }
+}
+
+// b_err against its conditions; err_order, when not given, is the highest that holds.
+int check_embedded(const Coefficients& k, const std::vector<double>& b_err, const std::optional<int>& err_order) {
+  if (b_err == k.b) throw InputError("equals b: the error estimate b - b_err would be zero", "b_err");
+  const OrderConditionCheck check =
+      check_order_conditions(k.stages(), k.a, b_err, k.c, err_order.value_or(kMaxConditionOrder));
+  if (err_order && check.failure)
+    throw InputError("the embedded weights declare err_order " + std::to_string(*err_order) +
+                         " but satisfy the order conditions only to order " + std::to_string(check.satisfied_order) +
+                         " (" + describe(*check.failure) + ")",
+                     "b_err");
+  if (check.satisfied_order == 0)
+    throw InputError("the embedded weights satisfy no order condition (" + describe(*check.failure) + ")", "b_err");
+  return check.satisfied_order;
+}
+
+TableauFile read_tableau(const json& doc, const std::string& path) {
+  if (!doc.is_object()) throw InputError(std::string("must be a JSON object, not ") + doc.type_name());
+  for (const auto& item : doc.items())
+    if (std::find(kKnownKeys.begin(), kKnownKeys.end(), item.key()) == kKnownKeys.end())
+      throw InputError("unknown key (known: " + list_of(kKnownKeys) + ")", item.key());
+  if (!doc.contains("name")) throw InputError("missing required key", "name");
+  if (!doc["name"].is_string() || !registry_safe(doc["name"].get<std::string>()))
+    throw InputError("must be a string of 1 to 40 letters, digits, '-', '_' or '.' (it names rk-<name>), not " +
+                         doc["name"].dump(),
+                     "name");
+  const std::string name = doc["name"].get<std::string>();
+  std::optional<int> order, err_order;
+  if (doc.contains("order")) order = integer_at(doc["order"], "order", 1, kMaxConditionOrder);
+  if (doc.contains("err_order")) err_order = integer_at(doc["err_order"], "err_order", 1, kMaxConditionOrder);
+  const Coefficients k = read_coefficients(doc);
+  TableauFile file{path, make_tableau(name, order, k), order.has_value(), {}, 0, {}};
+  const bool has_b_err = doc.contains("b_err") && !doc["b_err"].is_null();
+  if (has_b_err) {
+    file.b_err = numbers_at(doc["b_err"], "b_err", k.stages(), " (b has " + std::to_string(k.stages()) + ")");
+    file.err_order = check_embedded(k, file.b_err, err_order);
+  } else if (err_order) {
+    throw InputError("goes with b_err, which the file does not give", "err_order");
+  }
+  if (doc.contains("source")) {
+    if (!doc["source"].is_string()) throw InputError(std::string("must be a string, not ") + doc["source"].type_name(), "source");
+    file.source = doc["source"].get<std::string>();
+  }
+  return file;
+}
+
+}  // namespace
+
+TableauFile parse_tableau_file(std::string_view text, const std::string& path) {
+  try {
+    return read_tableau(parse_json_text(text), path);
+  } catch (const InputError& e) {
+    throw InputError("tableau file '" + path + "': " + e.what());
+  }
+}
+
+TableauFile load_tableau_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in || std::filesystem::is_directory(path)) throw InputError("cannot read the tableau file '" + path + "'", "tableau");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_tableau_file(text.str(), path);
+}
+
+}  // namespace rb

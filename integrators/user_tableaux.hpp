@@ -1,0 +1,29 @@
+#pragma once
+// The integrators one tableau file gives (FORMATS.md, "Butcher tableau"):
+// rk-<name> on the flat view and rkmk-<name> on the Lie-group view; with
+// b_err also rk-<name>-adaptive and rkmk-<name>-adaptive on the embedded
+// pair (PI controller, steps clamped onto the outputs).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "integrators/integrator.hpp"
+#include "integrators/tableau_file.hpp"
+#include "integrators/tableaus_high_order.hpp"
+
+namespace rb {
+
+// The file's tableau as an embedded pair (b propagates, e = b - b_err; FSAL
+// when the last stage's row is b at c = 1); the file must have b_err.
+EmbeddedPair embedded_pair_of(const TableauFile& file);
+
+// The file's integrators, in the order rk-, rkmk-, rk-...-adaptive, rkmk-...-adaptive.
+std::vector<std::unique_ptr<Integrator>> integrators_of(const TableauFile& file);
+
+// Loads the tableau file at path and adds its integrators to the registry
+// (after the built-in ones); returns their names. Throws InputError naming
+// the file when it is not a valid tableau or when one of the names is taken
+// (then none is added).
+std::vector<std::string> register_tableau_file(const std::string& path);
+
+}  // namespace rb
