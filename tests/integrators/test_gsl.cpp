@@ -8,7 +8,7 @@
 
 #include <thread>
 
-#include "integrators/gsl.hpp"
+#include "integrators/steppers/gsl.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"

@@ -10,7 +10,7 @@
 #include <functional>
 #include <map>
 
-#include "integrators/munthe_kaas_adaptive.hpp"
+#include "integrators/steppers/munthe_kaas_adaptive.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/tableaus_high_order.hpp"
 #include "problems/input_error.hpp"

@@ -1,4 +1,4 @@
-#include "integrators/munthe_kaas_adaptive.hpp"
+#include "integrators/steppers/munthe_kaas_adaptive.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "integrators/gsl.hpp"
+#include "integrators/steppers/gsl.hpp"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
