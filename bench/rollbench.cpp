@@ -19,10 +19,11 @@ namespace {
 
 int run_list() {
   std::printf("integrators (name, family, declared order, adaptive):\n");
-  for (const auto& integrator : rb::registry())
-    std::printf("  %-28s %-8s %2d  %-8s %s\n", integrator->name().c_str(), integrator->family().c_str(),
-                integrator->declared_order(), integrator->adaptive() ? "adaptive" : "fixed",
-                integrator->description().c_str());
+  for (const auto& integrator : rb::registry()) {
+    const rb::MethodInfo m = integrator->info();
+    std::printf("  %-28s %-8s %2d  %-8s %s\n", m.name.c_str(), m.family.c_str(), m.declared_order,
+                m.adaptive ? "adaptive" : "fixed", m.description.c_str());
+  }
   std::printf("\nscenes (in %s):\n", RB_SCENE_DIR);
   for (const std::string& name : rb::shipped_scene_names()) {
     const rb::Scene scene = rb::load_scene(name);
