@@ -16,7 +16,7 @@
 #include <gsl/gsl_odeiv2.h>
 
 #include "bench/side_by_side.hpp"
-#include "integrators/gsl.hpp"
+#include "integrators/steppers/gsl.hpp"
 #include "integrators/registry.hpp"
 #include "problems/scene.hpp"
 

@@ -18,7 +18,7 @@
 #include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
 
 #include "bench/side_by_side.hpp"
-#include "integrators/odeint.hpp"
+#include "integrators/steppers/odeint.hpp"
 #include "integrators/registry.hpp"
 #include "problems/scene.hpp"
 

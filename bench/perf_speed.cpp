@@ -27,7 +27,7 @@
 
 #include "bench/hand_coded_ball.hpp"
 #include "bench/side_by_side.hpp"
-#include "integrators/gsl.hpp"
+#include "integrators/steppers/gsl.hpp"
 #include "integrators/registry.hpp"
 #include "problems/scene.hpp"
 

@@ -14,6 +14,7 @@
 #include "bench/lib/stepper_option.hpp"
 #include "bench/lib/tableau_option.hpp"
 #include "bench/lib/trajectory_csv.hpp"
+#include "integrators/controllers/controller.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
@@ -22,10 +23,11 @@ namespace {
 
 int run_list() {
   std::printf("integrators (name, family, declared order, adaptive):\n");
-  for (const auto& integrator : rb::registry())
-    std::printf("  %-28s %-8s %2d  %-8s %s\n", integrator->name().c_str(), integrator->family().c_str(),
-                integrator->declared_order(), integrator->adaptive() ? "adaptive" : "fixed",
-                integrator->description().c_str());
+  for (const auto& integrator : rb::registry()) {
+    const rb::MethodInfo m = integrator->info();
+    std::printf("  %-28s %-8s %2d  %-8s %s\n", m.name.c_str(), m.family.c_str(), m.declared_order,
+                m.adaptive ? "adaptive" : "fixed", m.description.c_str());
+  }
   std::printf("\nscenes (in %s):\n", RB_SCENE_DIR);
   for (const std::string& name : rb::shipped_scene_names()) {
     const rb::Scene scene = rb::load_scene(name);
@@ -161,7 +163,7 @@ int run_landscape(const LandscapeArgs& a) {
 }
 
 struct RunArgs {
-  std::string preset = "default", scenes, integrators, hs, tols, out, shard, cache;
+  std::string preset = "default", scenes, integrators, hs, tols, out, shard, cache, controller;
   int repeats = -1, jobs = -1;
   double dt_out = std::nan("");  // NaN: not given
   bool no_stability = false;
@@ -190,6 +192,7 @@ int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_
   spec.integrators = rb::with_tableau_methods(spec.integrators, !a.integrators.empty(), tableau_methods);
   if (!a.hs.empty()) spec.hs = rb::parse_number_list(a.hs, "h");
   if (!a.tols.empty()) spec.tols = rb::parse_number_list(a.tols, "tol");
+  if (!a.controller.empty()) spec.controller = rb::filter_controller(a.controller).name;  // refuses unknown names
   if (a.repeats >= 0) spec.repeats = a.repeats;
   if (a.jobs > 0) spec.jobs = a.jobs;
   if (a.no_stability) spec.stability.enabled = false;
@@ -307,6 +310,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--integrators", run.integrators, "comma-separated registry names");
   run_cmd->add_option("--h", run.hs, "step sizes, e.g. 0.1,0.05 or 2^-3..2^-8");
   run_cmd->add_option("--tol", run.tols, "tolerances (rtol = atol) of adaptive methods, e.g. 1e-4,1e-8");
+  run_cmd->add_option("--controller", run.controller,
+                      "step-size controller of the adaptive methods that take one: i, pi or pid (default: each method's own)");
   run_cmd->add_option("--dt-out", run.dt_out,
                       "record the state every dt-out in the timed runs and measure error_max there "
                       "(default: the timed runs record t_end only; error_max is measured every 0.25 in untimed runs)");

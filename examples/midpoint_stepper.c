@@ -7,7 +7,7 @@
  *   rollbench run --stepper ./libmidpoint_stepper.so --integrators midpoint-plugin,midpoint ...
  *
  * It does the same arithmetic as the built-in `midpoint`
- * (integrators/explicit_midpoint.hpp), so the two give the same numbers.
+ * (integrators/steppers/explicit_midpoint.hpp), so the two give the same numbers.
  */
 #include "integrators/plugin/rollbench_stepper.h"
 

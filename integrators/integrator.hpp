@@ -20,6 +20,24 @@ struct RunOptions {
   // always recorded last. Empty: t_end only. Fixed-step methods land on them.
   std::vector<double> output_times;
   long max_steps = 100'000'000;  // accepted + rejected steps before "max-steps"
+  // The step-size controller of an adaptive method whose stepper estimates
+  // its error ("i", "pi", "pid"; integrators/controllers/controller.hpp);
+  // empty: the method's own (MethodInfo::controller). Fixed-step methods
+  // and libraries' steppers keep theirs.
+  std::string controller;
+};
+
+// The facts of a method, in one place: what `rollbench list` shows, what the
+// runner needs and what the report records of every run.
+struct MethodInfo {
+  std::string name;         // registry name, e.g. "rkmk4"
+  std::string family;       // "rk", "rkmk", "odeint", "gsl", ...
+  int declared_order = 0;
+  int rotation_order = 0;   // the order in R (the declared order unless known lower)
+  bool adaptive = false;
+  bool needs_jacobian = false;
+  std::string controller;   // the default step-size controller: "constant", "library", "pi", ...
+  std::string description;  // one line for `rollbench list`
 };
 
 // Cost of a run, counted the same way by every integrator.
@@ -76,6 +94,15 @@ class Integrator {
   virtual bool adaptive() const { return false; }
   virtual bool needs_jacobian() const { return false; }
   virtual std::string description() const = 0;  // one line for `rollbench list`
+  // The default step-size controller (integrators/controllers/): "constant"
+  // for a fixed-step method, "library" for a library's own, or a filter.
+  virtual std::string controller() const { return adaptive() ? "library" : "constant"; }
+
+  // All of the above as one record.
+  MethodInfo info() const {
+    return {name(), family(), declared_order(), rotation_order(), adaptive(), needs_jacobian(), controller(),
+            description()};
+  }
 
   // Advance the problem from its start to options.t_end (or the problem's),
   // recording the outputs. Never throws for a failing method: failures are

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 
-#include "integrators/flat_embedded.hpp"
-#include "integrators/munthe_kaas.hpp"
-#include "integrators/munthe_kaas_adaptive.hpp"
+#include "integrators/steppers/flat_embedded.hpp"
+#include "integrators/steppers/munthe_kaas.hpp"
+#include "integrators/steppers/munthe_kaas_adaptive.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/runge_kutta.hpp"
+#include "integrators/steppers/runge_kutta.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {

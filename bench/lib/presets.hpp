@@ -42,6 +42,9 @@ struct SweepSpec {
   int jobs = 2;                          // threads for the accuracy runs
   int shard_index = 0, shard_count = 1;  // this process runs the runs with index % count == index
   long max_steps = 5'000'000;
+  // the step-size controller of the adaptive methods that take one (i, pi,
+  // pid; RunOptions::controller); empty: each method's own
+  std::string controller;
   StabilitySpec stability;
   std::string cache_dir;                 // reference cache; empty: none
 };

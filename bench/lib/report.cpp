@@ -85,6 +85,7 @@ json options_of(const SweepSpec& s) {
   return {{"preset", s.preset}, {"scenes", s.scenes}, {"integrators", s.integrators}, {"h", s.hs}, {"tol", s.tols},
           {"t_end", number(s.t_end > 0 ? s.t_end : kNaN)}, {"dt_out", number(s.dt_out > 0 ? s.dt_out : kNaN)}, {"error_dt", s.error_dt}, {"repeats", s.repeats},
           {"repeat_budget_s", s.repeat_budget_s}, {"jobs", s.jobs}, {"max_steps", s.max_steps},
+          {"controller", s.controller.empty() ? json(nullptr) : json(s.controller)},
           {"stability",
            {{"enabled", st.enabled}, {"scenes", st.scenes}, {"integrators", st.integrators}, {"drift_h", st.drift_h},
             {"drift_t_end", st.drift_t_end}, {"search_h_max", st.search_h_max}, {"search_h_min", st.search_h_min},
@@ -106,7 +107,7 @@ json run_json(const RunRecord& r, const std::string& reference_kind) {
   const Mat3 R = rotation_of(r.final_state);
   return {{"index", r.index}, {"scene", r.scene}, {"integrator", r.integrator}, {"family", r.family},
           {"declared_order", r.declared_order}, {"declared_rotation_order", r.rotation_order},
-          {"adaptive", r.adaptive}, {"needs_jacobian", r.needs_jacobian},
+          {"adaptive", r.adaptive}, {"needs_jacobian", r.needs_jacobian}, {"controller", r.controller},
           {"h", number(r.h)}, {"rtol", number(r.rtol)}, {"atol", number(r.atol)},
           {"status", std::string(status_name(r.status))}, {"message", r.message}, {"stop_time", r.stop_time},
           {"steps", r.cost.steps}, {"rejected", r.cost.rejected}, {"rhs_evals", r.cost.rhs_evals},

@@ -77,7 +77,7 @@ StableStepRecord stable_step_search(const SweepScene& s, const Integrator& m, co
   const double e0 = s.problem.model().derived(s.problem.y0()).energy;
   // upward from the smallest step, so that every h below the answer is tried
   for (double h = st.search_h_min; h <= st.search_h_max * (1 + 1e-12); h *= 2) {
-    const RunRecord run = run_task(s, SweepTask{0, 0, m.name(), h, kNaN}, 5'000'000);
+    const RunRecord run = run_task(s, SweepTask{0, 0, m.name(), h, kNaN, {}}, 5'000'000);
     StableStepTry t{h, run.status, kNaN, run.rotation_drift, false};
     if (run.status == Status::ok)
       t.energy_error = std::max(run.energy_drift, std::abs(run.final_energy - e0)) / r.energy_scale;

@@ -1,6 +1,6 @@
 #include "bench/lib/stepper_option.hpp"
 
-#include "integrators/plugin_stepper.hpp"
+#include "integrators/steppers/plugin_stepper.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
 

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <thread>
 
-#include "integrators/fixed_step.hpp"
+#include "integrators/driver.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
 #include "problems/so3.hpp"
@@ -31,6 +31,7 @@ RunOptions options_of(const SweepScene& s, const SweepTask& task, long max_steps
   RunOptions o;
   o.t_end = s.problem.t_end();
   o.max_steps = max_steps;
+  o.controller = task.controller;
   if (std::isnan(task.tol)) {
     o.h = task.h;
     for (const double t : outputs) {
@@ -149,6 +150,17 @@ void measure_grid(const SweepScene& s, const RunResult& run, RunRecord& r) {
 
 namespace {
 
+// The method's facts a record carries.
+void describe_method(RunRecord& r, const MethodInfo& info) {
+  r.integrator = info.name;
+  r.family = info.family;
+  r.declared_order = info.declared_order;
+  r.rotation_order = info.rotation_order;
+  r.adaptive = info.adaptive;
+  r.needs_jacobian = info.needs_jacobian;
+  r.controller = info.controller;
+}
+
 RunResult integrate_safely(const Integrator& m, const Problem& problem, const RunOptions& o) {
   try {
     return m.integrate(problem, o);
@@ -236,9 +248,9 @@ std::vector<SweepTask> sweep_tasks(const SweepSpec& spec, const std::vector<Swee
   for (std::size_t s = 0; s < scenes.size(); ++s)
     for (const std::string& m : methods) {
       if (find_integrator(m).adaptive()) {
-        for (double tol : spec.tols) all.push_back({all.size(), s, m, kNaN, tol});
+        for (double tol : spec.tols) all.push_back({all.size(), s, m, kNaN, tol, spec.controller});
       } else {
-        for (double h : spec.hs) all.push_back({all.size(), s, m, h, kNaN});
+        for (double h : spec.hs) all.push_back({all.size(), s, m, h, kNaN, spec.controller});
       }
     }
   std::vector<SweepTask> mine;
@@ -252,15 +264,11 @@ RunRecord run_task(const SweepScene& s, const SweepTask& task, long max_steps) {
   RunRecord r;
   r.index = task.index;
   r.scene = s.scene.name;
-  r.integrator = m.name();
-  r.family = m.family();
-  r.declared_order = m.declared_order();
-  r.rotation_order = m.rotation_order();
-  r.adaptive = m.adaptive();
-  r.needs_jacobian = m.needs_jacobian();
+  describe_method(r, m.info());
   r.h = task.h;
   r.rtol = r.atol = task.tol;
   const RunOptions timed = timed_options(s, task, max_steps);
+  r.controller = controller_of(r.controller, timed);
   const RunResult run = integrate_safely(m, s.problem, timed);
   r.status = run.status;
   r.message = run.message;

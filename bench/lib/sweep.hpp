@@ -52,6 +52,7 @@ struct RunRecord {
   std::string scene, integrator, family;
   int declared_order = 0, rotation_order = 0;
   bool adaptive = false, needs_jacobian = false;
+  std::string controller;  // the step-size controller the run used
   double h = kNaN, rtol = kNaN, atol = kNaN;
   Status status = Status::ok;
   std::string message;
@@ -86,6 +87,7 @@ struct SweepTask {
   std::string integrator;
   double h = kNaN;    // fixed-step
   double tol = kNaN;  // adaptive: rtol = atol = tol
+  std::string controller;  // RunOptions::controller (empty: the method's own)
 };
 
 // The tasks of this shard, in a deterministic order.

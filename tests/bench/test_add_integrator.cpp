@@ -1,5 +1,5 @@
 // README's recipe "Add your own integrator" followed to the letter by
-// integrators/explicit_midpoint.hpp (one file, one registry line): the
+// integrators/steppers/explicit_midpoint.hpp (one file, one registry line): the
 // registry, the runner and the report pick it up with no other change. The
 // registry-wide tests (order, conformance) check it too.
 #include <gtest/gtest.h>

@@ -9,6 +9,8 @@
 #include <sstream>
 #include <sys/wait.h>
 
+#include <nlohmann/json.hpp>
+
 #include "integrators/registry.hpp"
 
 namespace rb {
@@ -139,6 +141,30 @@ TEST(Cli, RunDtOutSetsTheTimedOutputsAndRejectsBadSpacing) {
     const Outcome b = rollbench(std::string("run --preset quick --dt-out ") + bad + " --out " + report.string());
     EXPECT_EQ(b.code, 2) << bad;
     EXPECT_EQ(b.err, "rollbench: 'dt-out': the output spacing must be a finite number > 0\n") << bad;
+  }
+}
+
+// --controller: refused when unknown (exit 2, naming the key and the known
+// ones); otherwise recorded in the report's options and, per run, the
+// controller each method used (filters where the method takes one).
+TEST(Cli, RunControllerIsCheckedAndRecorded) {
+  const fs::path report = temp_file("controller.json");
+  Outcome o = rollbench("run --preset quick --controller p --out " + report.string());
+  EXPECT_EQ(o.code, 2);
+  EXPECT_EQ(o.err, "rollbench: 'controller': unknown step-size controller 'p' (known: constant, library, i, pi, pid)\n");
+  o = rollbench("run --preset quick --scenes valley-sideways --integrators rkmk-bs32-adaptive,odeint-dopri5-adaptive,rk4 "
+                "--tol 1e-6 --h 0.05 --repeats 1 --no-stability --controller pid --out " +
+                report.string());
+  ASSERT_EQ(o.code, 0) << o.err;
+  std::ifstream in(report);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["options"]["controller"], "pid");
+  ASSERT_EQ(j["runs"].size(), 3u);
+  for (const auto& run : j["runs"]) {
+    const std::string name = run["integrator"];
+    const std::string expected = name == "rk4" ? "constant" : name == "odeint-dopri5-adaptive" ? "library" : "pid";
+    EXPECT_EQ(run["controller"], expected) << name;
+    EXPECT_EQ(run["status"], "ok") << name;
   }
 }
 

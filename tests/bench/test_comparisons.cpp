@@ -22,7 +22,7 @@ SweepSpec one_scene(const std::string& scene, double t_end) {
 }
 
 RunRecord run_one(const SweepScene& s, const std::string& method, double h, double tol = kNaN) {
-  return run_task(s, SweepTask{0, 0, method, h, tol}, 5'000'000);
+  return run_task(s, SweepTask{0, 0, method, h, tol, {}}, 5'000'000);
 }
 
 // rkmk8 and odeint-fehlberg78 share a tableau and, for a homogeneous ball

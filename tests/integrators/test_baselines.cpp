@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "integrators/baselines.hpp"
+#include "integrators/steppers/baselines.hpp"
 #include "integrators/registry.hpp"
 #include "problems/scene.hpp"
 #include "problems/so3.hpp"

@@ -8,9 +8,9 @@
 #include <cstdio>
 
 #include "integrators/cayley.hpp"
-#include "integrators/commutator_free.hpp"
-#include "integrators/crouch_grossman.hpp"
-#include "integrators/exp_product.hpp"
+#include "integrators/steppers/commutator_free.hpp"
+#include "integrators/steppers/crouch_grossman.hpp"
+#include "integrators/steppers/exp_product.hpp"
 #include "integrators/registry.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"

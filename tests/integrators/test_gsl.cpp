@@ -8,7 +8,7 @@
 
 #include <thread>
 
-#include "integrators/gsl.hpp"
+#include "integrators/steppers/gsl.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
@@ -110,6 +110,20 @@ TEST(GslCounters, AdaptiveCountsAcceptedAndRejectedSteps) {
   ASSERT_EQ(msbdf.status, Status::ok);
   EXPECT_GT(msbdf.cost.jacobian_evals, 0);
   EXPECT_LT(msbdf.cost.jacobian_evals, msbdf.cost.steps);  // BDF reuses its Newton matrix
+}
+
+// A fixed step GSL cannot take is a status from the driver (StepFailure),
+// not a NaN state: the run ends at the last valid state, and the failed
+// step is not counted as accepted.
+TEST(GslFailures, AFailedFixedStepIsAStatusAtTheLastValidState) {
+  const Problem bowl = make_problem(load_scene("bowl-3d"));
+  const RunResult run = find_integrator("gsl-rk1imp").integrate(bowl, fixed(1.0, bowl.t_end()));
+  EXPECT_EQ(run.status, Status::error);
+  EXPECT_EQ(run.message,
+            "GSL rk1imp: the step failed (the implicit solve did not converge) at t = 0, h = 1 (GSL_FAILURE: failure)");
+  EXPECT_EQ(run.cost.steps, 0);
+  EXPECT_EQ(run.stop_time, 0.0);
+  EXPECT_EQ(run.final_state, bowl.y0());
 }
 
 TEST(GslOutputs, LandExactlyOnTheRequestedTimes) {

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <map>
 
-#include "integrators/munthe_kaas_adaptive.hpp"
+#include "integrators/steppers/munthe_kaas_adaptive.hpp"
 #include "integrators/order_conditions.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/tableaus_high_order.hpp"

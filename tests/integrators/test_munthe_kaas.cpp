@@ -3,9 +3,9 @@
 // the contrast with classical RK whose R drifts.
 #include <gtest/gtest.h>
 
-#include "integrators/munthe_kaas.hpp"
+#include "integrators/steppers/munthe_kaas.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/runge_kutta.hpp"
+#include "integrators/steppers/runge_kutta.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"
 #include "tests/integrators/fixtures.hpp"

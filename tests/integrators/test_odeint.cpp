@@ -5,7 +5,7 @@
 
 #include <thread>
 
-#include "integrators/odeint.hpp"
+#include "integrators/steppers/odeint.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"

@@ -3,9 +3,9 @@
 // each kind of bad file.
 #include <gtest/gtest.h>
 
-#include "integrators/munthe_kaas.hpp"
+#include "integrators/steppers/munthe_kaas.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/runge_kutta.hpp"
+#include "integrators/steppers/runge_kutta.hpp"
 #include "integrators/tableau_file.hpp"
 #include "integrators/user_tableaux.hpp"
 #include "problems/input_error.hpp"

@@ -29,7 +29,7 @@ TEST(CliErrors, TrajectoryOptionsNameTheirOption) {
       {"trajectory plane --integrator odeint-dopri5-adaptive --out OUT", 2,
        "rollbench: 'rtol': 'odeint-dopri5-adaptive' is adaptive and needs --rtol or --atol > 0\n"},
       {"trajectory plane --integrator gsl-rkf45-adaptive --rtol 1e-6 --atol -1 --out OUT", 2,
-       "rollbench: 'atol': a tolerance must be a finite number >= 0\n"},
+       "rollbench: 'atol': an adaptive method needs a finite tolerance >= 0\n"},
       {"trajectory plane --integrator odeint-dopri5-adaptive --rtol 1e-6 --atol nan --out OUT", 2,
        "rollbench: 'atol': an adaptive method needs a finite tolerance >= 0\n"},
       {"trajectory plane --integrator rk4 --h 0.1 --dt-out 0.01 --out OUT", 2,

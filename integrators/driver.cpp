@@ -1,9 +1,34 @@
-#include "integrators/adaptive.hpp"
+#include "integrators/driver.hpp"
 
-#include <cstdio>
 #include <limits>
 
 namespace rb {
+
+
+std::vector<double> output_times_of(const Problem& problem, const RunOptions& options) {
+  const double t_end = t_end_of(problem, options);
+  if (!(t_end > 0.0) || !std::isfinite(t_end)) throw InputError("t_end must be a finite number > 0", "t_end");
+  std::vector<double> times;
+  times.reserve(options.output_times.size() + 1);
+  double last = 0.0;
+  for (const double t : options.output_times) {
+    if (!(t > last) || t > t_end)
+      throw InputError("output times must increase within (0, t_end]", "output_times");
+    times.push_back(t);
+    last = t;
+  }
+  if (times.empty() || times.back() < t_end) times.push_back(t_end);
+  return times;
+}
+
+std::string model_stop_reason(const Validity& v, double t) {
+  if (v.status != Status::curvature && v.status != Status::lift_off) return v.reason;
+  char at[48];
+  std::snprintf(at, sizeof at, " at t = %.9g", t);
+  return v.reason + at;
+}
+
+
 
 Tolerances tolerances_of(const RunOptions& options) {
   auto check = [](double value, const char* key) {
@@ -58,6 +83,14 @@ double initial_step(const Problem& problem, const FlatState& y0, const Tolerance
   const double h = std::min({100.0 * h0, h1, span});
   // a start where F is not finite gets a plain guess; the run reports it
   return std::isfinite(h) && h > 0.0 ? h : 1e-3 * span;
+}
+
+
+std::string controller_of(const std::string& method_default, const RunOptions& options) {
+  if (options.controller.empty()) return method_default;
+  const ControllerKind& wanted = filter_controller(options.controller);  // throws for an unknown name
+  if (method_default == kConstantController || method_default == kLibraryController) return method_default;
+  return wanted.name;
 }
 
 }  // namespace rb

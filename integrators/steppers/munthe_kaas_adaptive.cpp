@@ -1,9 +1,10 @@
-#include "integrators/munthe_kaas_adaptive.hpp"
+#include "integrators/steppers/munthe_kaas_adaptive.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <vector>
 
 #include "integrators/adaptive.hpp"
@@ -18,12 +19,6 @@ namespace {
 // (u, z - z_n). The pair works on this vector as on any ODE's state.
 using LieVec = Eigen::Matrix<double, 3 + kZSize, 1>;
 constexpr double kLieSize = 3 + kZSize;
-
-constexpr double kSafety = 0.9;
-constexpr double kFacMin = 0.2;
-// non-finite trial steps a run tolerates before it is called diverged
-constexpr int kMaxNonFiniteTrials = 10;
-constexpr double kFacMax = 10.0;
 
 // Weights with their zeros left out: the stage loops skip them without a
 // branch (DP853's rows are half zeros).
@@ -41,7 +36,8 @@ struct SparseWeights {
   }
 };
 
-// The pair's steps for drive_adaptive (see integrators/adaptive.hpp).
+// The pair's steps for drive_adaptive (integrators/driver.hpp): an error
+// estimate for the controller, which decides.
 template <bool Dense>
 class LieStepper {
  public:
@@ -49,8 +45,7 @@ class LieStepper {
 
   LieStepper(const Problem& problem, const EmbeddedPair& pair, const Tolerances& tol,
              const std::vector<double>& outputs)
-      : problem_(&problem), pair_(&pair), tol_(tol), outputs_(&outputs),
-        alpha_(0.7 / pair.error_order), beta_(0.4 / pair.error_order) {
+      : problem_(&problem), pair_(&pair), tol_(tol), outputs_(&outputs) {
     R_ = rotation_of(problem.y0());
     z_ = z_of(problem.y0());
     for (int i = 0; i < pair.total; ++i)
@@ -61,7 +56,11 @@ class LieStepper {
     if constexpr (Dense) dense_y_.reserve(8);
   }
 
-  Attempt attempt(double t, double& h, Cost& cost) {
+  int error_order() const { return pair_->error_order; }
+
+  // The error norm of a step of h (NaN when the step is not finite); the
+  // step is kept in w_new_ for accept.
+  double try_step(double /*t*/, double h, Cost& cost) {
     const EmbeddedPair& p = *pair_;
     if (!have_first_) {
       problem_->lie_rhs(R_, z_.data(), omega_first_.data(), g_first_.data());
@@ -70,46 +69,23 @@ class LieStepper {
     }
     k_[0] << omega_first_, g_first_;
     for (int i = 1; i < p.stages; ++i) evaluate_stage(i, h, R_, z_, cost);
-    LieVec w_new;  // the step: (u_n+1, z_n+1 - z_n)
+    // the step: (u_n+1, z_n+1 - z_n)
     if (p.fsal < p.stages) {
-      w_new = w_fsal_;
+      w_new_ = w_fsal_;
     } else {
-      w_new = combine(b_, h);
+      w_new_ = combine(b_, h);
     }
-    const double err = error_norm(w_new, h);
-    if (!std::isfinite(err) || !w_new.allFinite()) {
-      // a trial step that left where F is finite (past a landscape's edge)
-      // was too large: shrink it hard, as odeint and GSL do. If the state
-      // itself blows up (or the edge is met again and again), the run ends
-      // diverged at the last finite state.
-      if (++nonfinite_trials_ > kMaxNonFiniteTrials) {
-        char text[160];
-        std::snprintf(text, sizeof text, "the state is not finite beyond t = %.9g (%d trial steps past it, the last of %.3g)",
-                      t, nonfinite_trials_, h);
-        throw StepFailure(Status::diverged, text);
-      }
-      h *= kFacMin;
-      rejected_last_ = true;
-      return Attempt::rejected;
-    }
-    if (err > 1.0) {
-      // a rejection shrinks by the plain elementary controller (exponent 1/k)
-      h *= std::max(kFacMin, kSafety * std::pow(err, -1.0 / pair_->error_order));
-      rejected_last_ = true;
-      return Attempt::rejected;
-    }
-    const double fac_max = rejected_last_ ? 1.0 : kFacMax;
-    const double fac = kSafety * std::pow(std::max(err, 1e-10), -alpha_) * std::pow(err_prev_, beta_);
-    err_prev_ = std::max(err, 1e-4);
-    rejected_last_ = false;
-    const double h_step = h;
-    h = h_step * std::clamp(fac, kFacMin, fac_max);
+    const double err = error_norm(w_new_, h);
+    return w_new_.allFinite() ? err : std::numeric_limits<double>::quiet_NaN();
+  }
 
+  void accept(double t, double h, Cost& cost) {
+    const EmbeddedPair& p = *pair_;
     R_prev_ = R_;
     z_prev_ = z_;
-    R_ = so3_exp(w_new.head<3>()) * R_prev_;
+    R_ = so3_exp(w_new_.head<3>()) * R_prev_;
     ++cost.exp_evals;
-    z_ = z_prev_ + w_new.tail<kZSize>();
+    z_ = z_prev_ + w_new_.tail<kZSize>();
     // the next step's first stage
     if (p.fsal < p.stages) {
       omega_first_ = omega_fsal_;
@@ -118,8 +94,7 @@ class LieStepper {
       problem_->lie_rhs(R_, z_.data(), omega_first_.data(), g_first_.data());
       ++cost.rhs_evals;
     }
-    if constexpr (Dense) dense_outputs(t, h_step, w_new, cost);
-    return Attempt::accepted;
+    if constexpr (Dense) dense_outputs(t, h, w_new_, cost);
   }
 
   void state(FlatState& y) const {
@@ -226,7 +201,6 @@ class LieStepper {
   const EmbeddedPair* pair_;
   Tolerances tol_;
   const std::vector<double>* outputs_;
-  double alpha_, beta_;
   Mat3 R_, R_prev_;
   ZState z_, z_prev_;
   std::array<LieVec, kMaxStages> k_;
@@ -235,10 +209,8 @@ class LieStepper {
   Vec3 omega_first_, omega_fsal_;  // omega at the step's start; at the FSAL stage
   ZState g_first_;
   LieVec w_fsal_;
+  LieVec w_new_;  // the step tried last
   bool have_first_ = false;
-  bool rejected_last_ = false;
-  int nonfinite_trials_ = 0;  // trial steps that left where F is finite
-  double err_prev_ = 1e-4;
   std::size_t next_out_ = 0;
   std::vector<double> dense_t_;
   std::vector<FlatState> dense_y_;
@@ -279,12 +251,13 @@ std::string MuntheKaasAdaptive::description() const {
 RunResult MuntheKaasAdaptive::integrate(const Problem& problem, const RunOptions& options) const {
   const Tolerances tol = tolerances_of(options);
   const std::vector<double> outputs = output_times_of(problem, options);
+  const std::string controller = controller_of(this->controller(), options);
   if (use_dense_) {
     LieStepper<true> stepper(problem, pair_, tol, outputs);
-    return drive_adaptive(problem, options, pair_.order, stepper);
+    return drive_adaptive(problem, options, pair_.order, stepper, controller);
   }
   LieStepper<false> stepper(problem, pair_, tol, outputs);
-  return drive_adaptive(problem, options, pair_.order, stepper);
+  return drive_adaptive(problem, options, pair_.order, stepper, controller);
 }
 
 }  // namespace rb

@@ -22,7 +22,7 @@
 // series' is h^3 [omega_1, omega_0] / 12, so sum_{i>j} b_i b_j (c_i - c_j)
 // = 1/6, which both methods satisfy; composed the other way the sum enters
 // with the opposite sign, so the reversed methods are order 2 in R.
-#include "integrators/crouch_grossman.hpp"
+#include "integrators/steppers/crouch_grossman.hpp"
 
 namespace rb::schemes {
 

@@ -1,4 +1,4 @@
-#include "integrators/flat_embedded.hpp"
+#include "integrators/steppers/flat_embedded.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "integrators/rkmk_cayley.hpp"
+#include "integrators/steppers/rkmk_cayley.hpp"
 
 #include <array>
 

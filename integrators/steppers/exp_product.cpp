@@ -1,4 +1,4 @@
-#include "integrators/exp_product.hpp"
+#include "integrators/steppers/exp_product.hpp"
 
 #include <algorithm>
 #include <array>

@@ -8,10 +8,9 @@
 //   three components are angles, measured against atol + rtol (R's entries
 //   are of size 1, as a flat method sees them); z's against
 //   atol + rtol max(|z_n,i|, |z_n+1,i|). Norm: root mean square (Hairer's).
-// - PI step-size controller (Gustafsson): after an accepted step
-//   h_new = h * 0.9 err^(-0.7/k) err_prev^(0.4/k), k the estimate's order,
-//   the factor kept in [0.2, 10] and at most 1 right after a rejection; a
-//   rejected step shrinks by 0.9 err^(-1/k), at least to 0.2 h.
+// - The step size comes from a controller (integrators/controllers/): by
+//   default Gustafsson's PI, RunOptions::controller chooses another
+//   (i, pid); k is the estimate's order.
 // - Outputs inside a step come from the pair's dense output mapped through
 //   exp: R(t_n + theta h) = exp(hat(u(theta))) R_n, z(theta) likewise (one
 //   exp each; DP853 needs its 3 extra stages once per step that holds an
@@ -38,6 +37,7 @@ class MuntheKaasAdaptive final : public Integrator {
   std::string family() const override { return "lie-adaptive"; }
   int declared_order() const override { return pair_.order; }
   bool adaptive() const override { return true; }
+  std::string controller() const override { return "pi"; }
   std::string description() const override;
   RunResult integrate(const Problem& problem, const RunOptions& options) const override;
 

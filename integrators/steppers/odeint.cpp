@@ -1,4 +1,4 @@
-#include "integrators/odeint.hpp"
+#include "integrators/steppers/odeint.hpp"
 
 #include <algorithm>
 #include <cmath>

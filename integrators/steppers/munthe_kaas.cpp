@@ -1,4 +1,4 @@
-#include "integrators/munthe_kaas.hpp"
+#include "integrators/steppers/munthe_kaas.hpp"
 
 #include <array>
 

@@ -1,8 +1,8 @@
 #pragma once
-// Crouch-Grossman methods (integrators/exp_product.hpp): stage i's
+// Crouch-Grossman methods (integrators/steppers/exp_product.hpp): stage i's
 // orientation is exp(a_{i,i-1} F_{i-1}) ... exp(a_{i,1} F_1) R_n and
 // R_{n+1} = exp(b_s F_s) ... exp(b_1 F_1) R_n, F_1 acting first.
-#include "integrators/exp_product.hpp"
+#include "integrators/steppers/exp_product.hpp"
 
 namespace rb::schemes {
 

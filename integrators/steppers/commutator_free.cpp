@@ -10,7 +10,7 @@
 // commutator term (1/2)[X_2, X_1] with X_1, X_2 its two exponents is
 // h^3 [omega_1, omega_0] / 12 for omega(t) = omega_0 + t omega_1, the
 // Magnus series' term; composed the other way it has the opposite sign.
-#include "integrators/commutator_free.hpp"
+#include "integrators/steppers/commutator_free.hpp"
 
 namespace rb::schemes {
 

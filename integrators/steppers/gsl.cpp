@@ -1,4 +1,4 @@
-#include "integrators/gsl.hpp"
+#include "integrators/steppers/gsl.hpp"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
@@ -12,8 +12,7 @@
 #include <sstream>
 #include <utility>
 
-#include "integrators/adaptive.hpp"
-#include "integrators/fixed_step.hpp"
+#include "integrators/driver.hpp"
 #include "problems/input_error.hpp"
 #include "problems/jacobian.hpp"
 
@@ -200,10 +199,6 @@ int find_stepper(const std::string& name) {
   throw InputError("GSL has no odeiv2 stepper '" + name + "' (known: " + known + ")", "integrator");
 }
 
-void check_tolerance(double value, const char* key) {
-  if (!(value >= 0.0) || !std::isfinite(value)) throw InputError("a tolerance must be a finite number >= 0", key);
-}
-
 }  // namespace
 
 void gsl_errors_off() {
@@ -237,12 +232,61 @@ std::string GslIntegrator::description() const {
                      : "; fixed step (gsl_odeiv2_step_apply per step)");
 }
 
+namespace {
+
+// GSL's evolve for drive_adaptive: each call is one accepted step towards
+// the bound (evolve clamps and lands itself); the attempts its control
+// rejects inside the call are added to cost.rejected.
+class GslEvolveStepper {
+ public:
+  static constexpr bool dense_output = false;
+  static constexpr bool lands_itself = true;
+
+  GslEvolveStepper(gsl_odeiv2_driver* driver, gsl_odeiv2_system* sys, CallbackState* cb, std::string stepper,
+                   const FlatState& y0)
+      : driver_(driver), sys_(sys), cb_(cb), stepper_(std::move(stepper)), y_(y0) {}
+
+  // the suite's historical first step for GSL: 1e-3 of the run
+  double first_step(double span) const { return 1e-3 * span; }
+
+  void advance(double& t, double bound, double& h, Cost& cost) {
+    gsl_odeiv2_evolve* evolve = driver_->e;
+    const double t_prev = t;
+    const int s = gsl_odeiv2_evolve_apply(evolve, driver_->c, driver_->s, sys_, &t, bound, &h, y_.data());
+    // evolve->count also counts the attempts its control rejected, so it is
+    // not used; failed_steps counts every attempt thrown away, except the
+    // last one of a call that fails
+    const long failed = static_cast<long>(evolve->failed_steps);
+    cost.rejected += failed - failed_seen_;
+    failed_seen_ = failed;
+    cost.rhs_evals = cb_->rhs_evals;
+    cost.jacobian_evals = cb_->jacobian_evals;
+    if (s != GSL_SUCCESS) {
+      ++cost.rejected;
+      const Validity v = failure_of(s, *cb_, stepper_, true, t_prev, h);
+      throw StepFailure(v.status, v.reason);
+    }
+  }
+  // evolve leaves y at no valid state on failure; the driver then ends at
+  // the state it kept
+  void state(FlatState& y) const { y = y_; }
+  void interpolate(double, FlatState&) const {}
+
+ private:
+  gsl_odeiv2_driver* driver_;
+  gsl_odeiv2_system* sys_;
+  CallbackState* cb_;
+  std::string stepper_;
+  FlatState y_;
+  long failed_seen_ = 0;
+};
+
+}  // namespace
+
 RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& options) const {
   gsl_errors_off();
   const StepperInfo& info = kSteppers[index_];
   const std::string stepper = info.name;
-  check_tolerance(options.rtol, "rtol");
-  check_tolerance(options.atol, "atol");
   CallbackState cb;
   cb.problem = &problem;
   const bool check_f = drive_ != GslDrive::fixed_step || info.implicit;
@@ -253,15 +297,14 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
     if (!(options.h > 0.0) || !std::isfinite(options.h))
       throw InputError("a fixed-step method needs a step h > 0", "h");
     // the implicit steppers read their Newton tolerance from the driver's
-    // control; explicit ones ignore it
+    // control (checked as any tolerance when given); explicit ones ignore it
+    if (options.rtol != 0.0 || options.atol != 0.0) (void)tolerances_of(options);
     const double rtol = options.rtol > 0.0 ? options.rtol : kFixedStepNewtonTol;
     const double atol = options.atol > 0.0 ? options.atol : kFixedStepNewtonTol;
     const DriverPtr driver(gsl_odeiv2_driver_alloc_standard_new(&sys, info.type(), options.h, atol, rtol, 1.0, 0.0));
     if (!driver) return allocation_failure(problem, stepper);
     gsl_odeiv2_step* step = driver->s;
     FlatState yerr;
-    int failure = GSL_SUCCESS;
-    double fail_t = 0.0, fail_h = 0.0;
     // no dydt_in / dydt_out: GSL would spend an extra rhs on the latter and
     // the shared loop has no use for either
     auto advance = [&](FlatState& y, double t, double h, Cost& cost) {
@@ -269,12 +312,8 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
       cost.rhs_evals = cb.rhs_evals;
       cost.jacobian_evals = cb.jacobian_evals;
       if (s != GSL_SUCCESS) {
-        // the shared loop then stops on a non-finite state with the last
-        // valid one; the status is replaced by the GSL failure below
-        failure = s;
-        fail_t = t;
-        fail_h = h;
-        y.setConstant(std::numeric_limits<double>::quiet_NaN());
+        const Validity v = failure_of(s, cb, stepper, false, t, h);
+        throw StepFailure(v.status, v.reason);
       }
     };
     // an explicit stepper's first evaluation is at y (no dydt_in): it gives
@@ -286,75 +325,19 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
       advance(next, t, h, cost);
       cb.margins = nullptr;
     };
-    RunResult run = info.implicit ? drive_fixed_step(problem, options, advance)
-                                  : drive_fixed_step(problem, options, advance_giving_margins);
-    if (failure != GSL_SUCCESS) {
-      const Validity v = failure_of(failure, cb, stepper, false, fail_t, fail_h);
-      run.status = v.status;
-      run.message = v.reason;
-    }
-    return run;
+    return info.implicit ? drive_fixed_step(problem, options, advance)
+                         : drive_fixed_step(problem, options, advance_giving_margins);
   }
 
   // adaptive: validate everything before allocating
-  if (options.rtol == 0.0 && options.atol == 0.0)
-    throw InputError("an adaptive method needs rtol > 0 or atol > 0", "rtol");
-  if (!(options.h >= 0.0) || !std::isfinite(options.h))
-    throw InputError("the initial step h must be a finite number >= 0 (0 chooses it)", "h");
-  const std::vector<double> outputs = output_times_of(problem, options);
-  RunResult run;
-  run.output.t.reserve(outputs.size());
-  run.output.y.reserve(outputs.size());
-  FlatState y = problem.y0();
-  double t = 0.0;
-  // moved out, not copied: the rows may be many
-  auto stop = [&](const Validity& v, const FlatState& last_valid, double t_valid) {
-    return std::move(run.stopped(v.status, v.reason, last_valid, t_valid));
-  };
-  // GSL's controller would accept steps at a tolerance below rounding (its
-  // error estimate is noise there): refuse it up front, as odeint's adapters do
-  if (const Validity v = attainable({options.rtol, options.atol}, y); v.status != Status::ok) return stop(v, y, t);
-  ++run.cost.validity_checks;
-  if (const Validity v = problem.check_full(y); v.status != Status::ok)
-    return stop({v.status, model_stop_reason(v, t)}, y, t);
-  const double h0 = options.h > 0.0 ? options.h : 1e-3 * outputs.back();
-  double h = h0;
+  (void)tolerances_of(options);
+  (void)output_times_of(problem, options);
+  const double h0 = options.h > 0.0 ? options.h : 1e-3 * t_end_of(problem, options);
   const DriverPtr driver(
       gsl_odeiv2_driver_alloc_standard_new(&sys, info.type(), h0, options.atol, options.rtol, 1.0, 0.0));
   if (!driver) return allocation_failure(problem, stepper);
-  gsl_odeiv2_evolve* evolve = driver->e;
-  for (const double t_out : outputs) {
-    while (t < t_out) {
-      // the budget is checked between accepted steps; the rejections inside
-      // one evolve_apply call (a few dozen at most) cannot be interrupted
-      if (run.cost.steps + run.cost.rejected >= options.max_steps)
-        return stop({Status::max_steps, "reached max_steps = " + std::to_string(options.max_steps)}, y, t);
-      // evolve leaves neither y nor t at the last valid state on failure
-      const FlatState y_prev = y;
-      const double t_prev = t;
-      const int s = gsl_odeiv2_evolve_apply(evolve, driver->c, driver->s, &sys, &t, t_out, &h, y.data());
-      // a successful call is one accepted step. evolve->count also counts
-      // the attempts its control rejected, so it is not used; failed_steps
-      // counts every attempt thrown away, except the last one of a call
-      // that fails
-      run.cost.rejected = static_cast<long>(evolve->failed_steps);
-      run.cost.rhs_evals = cb.rhs_evals;
-      run.cost.jacobian_evals = cb.jacobian_evals;
-      if (s != GSL_SUCCESS) {
-        ++run.cost.rejected;
-        return stop(failure_of(s, cb, stepper, true, t_prev, h), y_prev, t_prev);
-      }
-      ++run.cost.steps;
-      // every accepted state against the model's limits, as drive_adaptive does
-      ++run.cost.validity_checks;
-      const Validity v = problem.check_full(y);
-      if (v.status != Status::ok) return stop({v.status, model_stop_reason(v, t)}, y_prev, t_prev);
-    }
-    run.output.push(t, y);
-  }
-  run.final_state = y;
-  run.stop_time = t;
-  return run;
+  GslEvolveStepper evolve(driver.get(), &sys, &cb, stepper, problem.y0());
+  return drive_adaptive(problem, options, declared_order(), evolve);
 }
 
 }  // namespace rb

@@ -1,4 +1,4 @@
-#include "integrators/runge_kutta.hpp"
+#include "integrators/steppers/runge_kutta.hpp"
 
 #include <array>
 

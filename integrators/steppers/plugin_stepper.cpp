@@ -1,4 +1,4 @@
-#include "integrators/plugin_stepper.hpp"
+#include "integrators/steppers/plugin_stepper.hpp"
 
 #include <dlfcn.h>
 
@@ -69,7 +69,6 @@ class PluginStepper final : public Integrator {
     PluginCallContext context{&problem, nullptr};
     const rollbench_problem callbacks = plugin_callbacks(context);
     char message[512];
-    std::string failure;  // the plug-in's error, when it returned one
     auto step = [&](const FlatState& y, FlatState& next, double t, double h, Cost& cost) {
       context.cost = &cost;
       message[0] = '\0';
@@ -78,18 +77,13 @@ class PluginStepper final : public Integrator {
         message[sizeof message - 1] = '\0';
         char at[48];
         std::snprintf(at, sizeof at, " at t = %.9g", t);
-        failure = "stepper '" + facts_.name + "' returned error code " + std::to_string(code) + at +
-                  (message[0] != '\0' ? std::string(": ") + message : std::string());
-        // a non-finite state stops the driver right here, at the last valid state
-        next.setConstant(std::numeric_limits<double>::quiet_NaN());
+        // the driver ends the run here, at the last valid state
+        throw StepFailure(Status::error, "stepper '" + facts_.name + "' returned error code " +
+                                             std::to_string(code) + at +
+                                             (message[0] != '\0' ? std::string(": ") + message : std::string()));
       }
     };
-    RunResult run = drive_fixed_step(problem, options, step);
-    if (!failure.empty()) {
-      run.status = Status::error;
-      run.message = failure;
-    }
-    return run;
+    return drive_fixed_step(problem, options, step);
   }
 
  private:

@@ -1,4 +1,4 @@
-#include "integrators/baselines.hpp"
+#include "integrators/steppers/baselines.hpp"
 
 #include "integrators/fixed_step.hpp"
 #include "problems/so3.hpp"

@@ -1,0 +1,347 @@
+#pragma once
+// The one driver: every integrator's run goes through it. It owns what a run
+// is made of besides the stepping: the output times and landing on them, the
+// step budget (accepted + rejected steps), the model's validity checks of the
+// start and of every accepted state (Cost::validity_checks = steps + 1), the
+// stop at the last valid state with a status and a reason, and turning a
+// stepper's failure into that status. The stepper only steps; the step size
+// comes from a controller (integrators/controllers/controller.hpp).
+//
+// Two loops share that bookkeeping (RunBook, integrators/run_book.hpp):
+// - drive_fixed_step: the "constant" controller, uniform steps of about h
+//   that land exactly on each output time. Its stepper is a functor (see
+//   there), the shape every fixed-step stepper has.
+// - drive_adaptive: a controller's steps, landing on each output (clamped
+//   steps, or interpolation for a stepper with a dense output).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include "integrators/controllers/controller.hpp"
+#include "integrators/run_book.hpp"
+#include "problems/input_error.hpp"
+
+namespace rb {
+
+// Runs step(y, t, h, cost) repeatedly with the "constant" controller. step
+// advances y in place from t to t + h and adds its own counts (rhs_evals,
+// exp_evals, ...) to cost; the driver counts steps. A step may instead take
+// (y, next, t, h, cost) and write the state at t + h into next, leaving y as
+// it is: that saves copying the state twice a step on the critical path of a
+// cheap step. A step that takes (y, next, t, h, cost, margins) also fills
+// margins at y from its first stage (the right-hand side there computes them
+// anyway): then the model's validity of y is decided at no extra evaluation,
+// one step late, and a state found invalid is dropped with its output row.
+// Other steps get an explicit check of each new state (Problem::check_full).
+// Either way every accepted state and the start are checked once, counted in
+// Cost::validity_checks. A step that fails throws StepFailure. Between two
+// outputs t_a < t_b it takes n = ceil((t_b - t_a) / h) equal steps, so h is
+// kept exactly when the output spacing is a multiple of h.
+template <class StepFn>
+RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, StepFn&& step) {
+  constexpr bool gives_margins =
+      std::is_invocable_v<StepFn&, const FlatState&, FlatState&, double, double, Cost&, ModelMargins&>;
+  constexpr bool writes_next = std::is_invocable_v<StepFn&, const FlatState&, FlatState&, double, double, Cost&>;
+  if (!(options.h > 0.0) || !std::isfinite(options.h))
+    throw InputError("a fixed-step method needs a step h > 0", "h");
+  RunBook book(problem, options);
+  Cost& cost = book.cost();
+  // the state before the current one, the current one and the next,
+  // rotated after each accepted step (the one before is where a run whose
+  // current state fails its deferred check ends)
+  std::array<FlatState, 3> states = {problem.y0(), problem.y0(), FlatState()};
+  FlatState* before = &states[0];
+  FlatState* y = &states[1];
+  FlatState* next = &states[2];
+  double t_before = 0.0, t = 0.0;
+  // the current state failed the model's check: end at the one before,
+  // without the current state's output row
+  auto stop_model = [&](const Validity& v) {
+    Trajectory& out = book.output();
+    if (!out.t.empty() && out.t.back() == t && t > t_before) {
+      out.t.pop_back();
+      out.y.pop_back();
+    }
+    return book.stop(v.status, model_stop_reason(v, t), *before, t_before);
+  };
+  if constexpr (!gives_margins) {
+    ++cost.validity_checks;
+    if (const Validity v = problem.check_full(*y); v.status != Status::ok) return stop_model(v);
+  }
+  try {
+    for (const double t_out : book.outputs()) {
+      const double span = t_out - t;
+      // the slack absorbs the rounding of span on long runs with dense output
+      // (t ~ 10, span ~ 1e-5 has a relative error ~ 1e-10), which would add
+      // a step to an interval that h divides; the cost is steps at most 1e-6
+      // longer than h
+      const double n_real = std::ceil(span / options.h - 1e-6);
+      if (n_real > 1e15) return book.stop(Status::max_steps, "the step count overflows", *y, t);
+      const long n = std::max(1L, static_cast<long>(n_real));
+      const double h = span / static_cast<double>(n);
+      const double t_start = t;
+      for (long i = 0; i < n; ++i) {
+        if (book.over_budget()) return book.stop_over_budget(*y, t);
+        if constexpr (gives_margins) {
+          ModelMargins margins;
+          step(std::as_const(*y), *next, t, h, cost, margins);
+          ++cost.validity_checks;
+          if (!problem.within_model(margins)) [[unlikely]]
+            return stop_model(problem.check_model(margins));
+        } else if constexpr (writes_next) {
+          step(std::as_const(*y), *next, t, h, cost);
+        } else {
+          *next = *y;
+          step(*next, t, h, cost);
+        }
+        ++cost.steps;
+        const Validity v = problem.check_step(*next);
+        if (v.status != Status::ok) return book.stop(v.status, v.reason, *y, t);
+        const double t_next = (i + 1 == n) ? t_out : t_start + static_cast<double>(i + 1) * h;
+        if constexpr (!gives_margins) {
+          if (const Validity m = book.check_model_at(*next, t_next); m.status != Status::ok)
+            return book.stop(m.status, m.reason, *y, t);
+        }
+        FlatState* const freed = before;
+        before = y;
+        y = next;
+        next = freed;
+        t_before = t;
+        t = t_next;
+      }
+      book.output().push(t, *y);
+    }
+  } catch (const StepFailure& e) {
+    return book.stop(e.status(), e.what(), *y, t);
+  }
+  if constexpr (gives_margins) {
+    // the last state: no step starts from it, so one evaluation of its own
+    ++cost.validity_checks;
+    if (const Validity v = problem.check_full(*y); v.status != Status::ok) return stop_model(v);
+  }
+  return book.finish(*y, t);
+}
+
+
+// ---- adaptive ----
+
+// Tolerances of an adaptive run, as the error norm of the controller uses
+// them: a component's error is measured against atol + rtol * |y_i|.
+struct Tolerances {
+  double rtol = 0.0;
+  double atol = 0.0;
+};
+
+// The tolerances of options, checked (the only check of them): finite,
+// >= 0, not both 0; also that the initial step options.h is finite and >= 0
+// (0 = automatic). Throws InputError naming the option.
+Tolerances tolerances_of(const RunOptions& options);
+
+// The smallest step time can resolve near t: a controller proposing less is
+// a step-size underflow (at 1e-14 relative, a step barely changes t).
+inline double min_step_at(double t) { return 1e-14 * std::max(1.0, std::abs(t)); }
+
+// Whether a controller can meet tol at all: not when both tolerances are
+// below the rounding of the state (rtol < 4 eps and atol < 4 eps max|y0_i|,
+// eps = 2.2e-16). Error estimates then sit in rounding noise: a controller
+// either creeps at tiny steps or accepts steps whose true error exceeds the
+// tolerance and reports ok. drive_adaptive ends such a run at t = 0 with
+// step_underflow. Status ok when attainable.
+Validity attainable(const Tolerances& tol, const FlatState& y0);
+
+// A first step for a method of the given order from y0 (Hairer, Norsett &
+// Wanner, Solving ODEs I, II.4, as in DOPRI5's hinit): two rhs evaluations,
+// counted in cost. At most span (the time to the end of the run).
+double initial_step(const Problem& problem, const FlatState& y0, const Tolerances& tol, int order, double span,
+                    Cost& cost);
+
+// "the step size fell to 3.2e-15 at t = 0.25" (numbers in %g).
+std::string underflow_message(double h, double t);
+
+// The controller a run of an adaptive method uses: the method's own
+// (MethodInfo::controller) unless options.controller names a filter (i, pi,
+// pid) and the method's is one too; a library's controller stays. Throws
+// InputError (key "controller") for an unknown name.
+std::string controller_of(const std::string& method_default, const RunOptions& options);
+
+// What one attempt of an adaptive step did (a stepper with its own controller).
+enum class Attempt { accepted, rejected };
+
+// Non-finite trial steps a run tolerates before it is called diverged.
+inline constexpr int kMaxNonFiniteTrials = 10;
+
+// Runs stepper from the problem's start to the last output time. A stepper
+// offers
+//
+//   static constexpr bool dense_output;
+//   void state(FlatState& y) const;             the current state
+//   void interpolate(double t, FlatState& y) const;
+//       dense output only: the state at t within the last accepted step;
+//
+// and one of three ways to step:
+//
+// - an error estimate, for the suite's controllers (the RKMK pairs):
+//     int error_order() const;                  k, err = O(h^k)
+//     double try_step(double t, double h, Cost& cost);
+//         the error norm of a step of h from the current state (<= 1 meets
+//         the tolerance; not finite where the step left where F is finite);
+//         the state is unchanged;
+//     void accept(double t, double h, Cost& cost);
+//         makes the tried step the current state.
+//   The controller (controller_of) decides; the driver counts non-finite
+//   trials and ends the run diverged after kMaxNonFiniteTrials.
+// - its own controller (odeint):
+//     Attempt attempt(double t, double& h, Cost& cost);
+//         tries one step of h. accepted: its state is now the one at t + h;
+//         rejected: unchanged. Either way h becomes the step it proposes next.
+// - its own controller and its own landing (GSL's evolve), with
+//   static constexpr bool lands_itself = true:
+//     void advance(double& t, double bound, double& h, Cost& cost);
+//         one accepted step from t towards bound (landing on it when near),
+//         t and h updated, its own rejections added to cost.rejected;
+//     double first_step(double span) const;     the first h when options.h = 0.
+//
+// A stepper adds its own counts (rhs_evals, ...) to cost; the driver counts
+// steps and rejections. A failure is thrown: StepFailure carries its status,
+// any other std::exception becomes Status::error with its message.
+// options.h > 0 is the first step tried; 0 asks initial_step for one. Never
+// throws for a failing method; throws InputError for bad options.
+template <class Stepper>
+RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int order, Stepper& stepper,
+                         const std::string& controller_name = kLibraryController) {
+  constexpr bool estimates = requires(Stepper& s, Cost& c) { s.try_step(0.0, 0.0, c); };
+  constexpr bool lands_itself = requires { requires Stepper::lands_itself; };
+  const Tolerances tol = tolerances_of(options);
+  RunBook book(problem, options);
+  const std::vector<double>& outputs = book.outputs();
+  const double t_end = outputs.back();
+  Cost& cost = book.cost();
+  FlatState y = problem.y0();
+  double t = 0.0;
+  if (const Validity v = attainable(tol, y); v.status != Status::ok) return book.stop(v.status, v.reason, y, t);
+  // the start, checked as every accepted state is (see below)
+  if (const Validity v = book.check_model_at(y, t); v.status != Status::ok) return book.stop(v.status, v.reason, y, t);
+  double h = 0.0;
+  if (options.h > 0.0)
+    h = options.h;
+  else if constexpr (lands_itself)
+    h = stepper.first_step(t_end);
+  else
+    h = initial_step(problem, y, tol, order, t_end, cost);
+  auto make_controller = [&] {
+    if constexpr (estimates)
+      return FilterController(filter_controller(controller_name), stepper.error_order());
+    else
+      return FilterController(filter_controllers().front(), 1);  // unused
+  };
+  [[maybe_unused]] FilterController controller = make_controller();
+  int nonfinite_trials = 0;
+  FlatState y_new, y_out;  // reused: no allocation in the loop
+  std::size_t next = 0;    // the next output to record
+  while (next < outputs.size()) {
+    if (book.over_budget()) return book.stop_over_budget(y, t);
+    if (!(h >= min_step_at(t)))  // also catches a NaN step
+      return book.stop(Status::step_underflow, underflow_message(h, t), y, t);
+    // controlled steppers land on every output, dense ones on t_end only;
+    // a remainder below min_step is taken in this step rather than alone
+    const double bound = Stepper::dense_output ? t_end : outputs[next];
+    bool lands = t + h >= bound - min_step_at(bound);
+    const double h_try = lands ? bound - t : h;
+    double h_next = h_try;
+    double t_new = t + h_try;
+    bool accepted = true;
+    try {
+      if constexpr (lands_itself) {
+        t_new = t;
+        h_next = h;
+        stepper.advance(t_new, bound, h_next, cost);
+        lands = t_new >= bound;
+      } else if constexpr (estimates) {
+        const double err = stepper.try_step(t, h_try, cost);
+        if (!std::isfinite(err)) {
+          // a trial step that left where F is finite (past a landscape's
+          // edge) was too large: shrink it hard. If the state itself blows
+          // up (or the edge is met again and again), the run ends diverged.
+          if (++nonfinite_trials > kMaxNonFiniteTrials) {
+            char text[160];
+            std::snprintf(text, sizeof text,
+                          "the state is not finite beyond t = %.9g (%d trial steps past it, the last of %.3g)", t,
+                          nonfinite_trials, h_try);
+            throw StepFailure(Status::diverged, text);
+          }
+          accepted = false;
+          h_next = controller.shrink(h_try);
+        } else {
+          const StepDecision d = controller.decide(err, h_try);
+          accepted = d.accepted;
+          h_next = d.h_next;
+          if (accepted) stepper.accept(t, h_try, cost);
+        }
+      } else {
+        accepted = stepper.attempt(t, h_next, cost) == Attempt::accepted;
+      }
+    } catch (const StepFailure& e) {
+      return book.stop(e.status(), e.what(), y, t);
+    } catch (const std::exception& e) {
+      return book.stop(Status::error, e.what(), y, t);
+    } catch (...) {
+      return book.stop(Status::error, "unknown exception from the stepper", y, t);
+    }
+    if (!accepted) {
+      ++cost.rejected;
+      h = h_next;
+      continue;
+    }
+    ++cost.steps;
+    const double t_old = t;
+    if constexpr (lands_itself) {
+      t = t_new;
+      h = h_next;
+    } else {
+      t = lands ? bound : t_new;
+      // a step shortened to land says little about the next one: keep the
+      // controller's previous proposal when it was larger
+      h = lands ? std::max(h_next, h) : h_next;
+    }
+    // a step to an invalid state ends the run at the last valid one; no
+    // output is interpolated towards it. The model's limits are checked at
+    // every accepted state by one evaluation there (a library's stepper
+    // does not say where it evaluates)
+    stepper.state(y_new);
+    if (const Validity v = problem.check_step(y_new); v.status != Status::ok)
+      return book.stop(v.status, v.reason, y, t_old);
+    if (const Validity m = book.check_model_at(y_new, t); m.status != Status::ok)
+      return book.stop(m.status, m.reason, y, t_old);
+    // record every output this step reached
+    if constexpr (Stepper::dense_output) {
+      Trajectory& out = book.output();
+      for (; next < outputs.size() && outputs[next] <= t; ++next) {
+        const double t_out = outputs[next];
+        if (t_out == t)
+          y_out = y_new;
+        else
+          stepper.interpolate(t_out, y_out);
+        // a non-finite interpolant (the dense output can see what the
+        // step's end did not) is not a state to end on
+        const Validity at = problem.check_step(y_out);
+        if (at.status != Status::ok) {
+          const bool none = out.y.empty();
+          return book.stop(at.status, at.reason, none ? y : out.y.back(), none ? t_old : out.t.back());
+        }
+        out.push(t_out, y_out);
+      }
+    } else if (lands) {
+      book.output().push(t, y_new);
+      ++next;
+    }
+    y = y_new;
+  }
+  return book.finish(y, t);
+}
+
+}  // namespace rb

@@ -1,0 +1,9 @@
+#pragma once
+// Source: Heun (1900), the explicit trapezoidal rule.
+#include "integrators/tableau.hpp"
+
+namespace rb::tableaus {
+
+inline Tableau heun() { return Tableau("heun", 2, {0, 0, 1, 0}, {0.5, 0.5}, {0, 1}); }
+
+}  // namespace rb::tableaus

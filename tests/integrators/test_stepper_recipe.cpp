@@ -1,0 +1,86 @@
+// README's recipe "Add your own integrator", followed by a test: a new way
+// of stepping is one stepper (here Ralston's second-order method, which no
+// registry entry uses) made into an integrator with stepped_method and one
+// registration line. The registry, the runner and the report then treat it
+// like any other method, and the driver gives it the same checks and counts.
+#include <gtest/gtest.h>
+
+#include "bench/lib/report.hpp"
+#include "integrators/registry.hpp"
+#include "integrators/steppers/stepped_method.hpp"
+
+namespace rb {
+namespace {
+
+// the stepper: y_n+1 = y_n + h (k1 + 3 k2) / 4, k2 = F(y_n + 2/3 h k1)
+struct RalstonStep {
+  const Problem& problem;
+  FlatState k1, k2, mid;
+  void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost, ModelMargins& margins) {
+    problem.flat_rhs(y.data(), k1.data(), margins);
+    mid = y + (2.0 / 3.0 * h) * k1;
+    problem.flat_rhs(mid.data(), k2.data());
+    next = y + (0.25 * h) * (k1 + 3.0 * k2);
+    cost.rhs_evals += 2;
+  }
+};
+
+std::unique_ptr<Integrator> ralston() {
+  return stepped_method({.name = "test-ralston", .family = "rk", .declared_order = 2, .controller = "constant",
+                         .description = "Ralston's second-order method (the recipe's test)"},
+                        [](const Problem& p) { return RalstonStep{p, {}, {}, {}}; });
+}
+
+const Integrator& registered() {
+  static const bool added = [] {
+    add_integrator(ralston(), "test");  // the one registry line
+    return true;
+  }();
+  (void)added;
+  return find_integrator("test-ralston");
+}
+
+TEST(StepperRecipe, OneStepperAndOneLineMakeAMethodTheRunnerMeasures) {
+  const Integrator& method = registered();
+  const MethodInfo info = method.info();
+  EXPECT_EQ(info.declared_order, 2);
+  EXPECT_EQ(info.rotation_order, 2);
+  EXPECT_FALSE(info.adaptive);
+  EXPECT_EQ(info.controller, kConstantController);
+
+  SweepSpec spec = preset("quick");
+  spec.scenes = {"valley-sideways"};
+  spec.integrators = {"test-ralston"};
+  spec.repeats = 1;
+  spec.stability.enabled = false;
+  const auto quiet = [](const std::string&) {};
+  const std::vector<SweepScene> scenes = prepare_scenes(spec);
+  const nlohmann::json report = make_report(spec, scenes, run_sweep(spec, scenes, quiet), {});
+  ASSERT_EQ(report["runs"].size(), spec.hs.size());
+  for (const auto& run : report["runs"]) {
+    EXPECT_EQ(run["status"], "ok");
+    EXPECT_EQ(run["controller"], "constant");
+    EXPECT_EQ(run["rhs_evals"].get<long>(), 2 * run["steps"].get<long>());
+    EXPECT_EQ(run["validity_checks"].get<long>(), run["steps"].get<long>() + 1);
+  }
+  ASSERT_EQ(report["orders"].size(), 1u);
+  EXPECT_NEAR(report["orders"][0]["observed"]["contact"].get<double>(), 2.0, 0.2);
+  EXPECT_EQ(report["orders"][0]["pass"], true);
+}
+
+// The driver's budget and stop hold for it with no code of its own.
+TEST(StepperRecipe, TheDriverStopsItOnTheBudget) {
+  RunOptions o;
+  o.h = 0.01;
+  o.t_end = 1.0;
+  o.max_steps = 7;
+  const Problem problem = make_problem(load_scene("valley-sideways"));
+  const RunResult run = registered().integrate(problem, o);
+  EXPECT_EQ(run.status, Status::max_steps);
+  EXPECT_EQ(run.message, "reached max_steps = 7");
+  EXPECT_EQ(run.cost.steps, 7);
+  EXPECT_DOUBLE_EQ(run.stop_time, 0.07);
+}
+
+}  // namespace
+}  // namespace rb
