@@ -31,16 +31,18 @@ struct Convergence {
   OrderFit contact_fit, omega_fit, rotation_fit;
 };
 
-// Halves h from h0 while the contact error stays above 1e-13 and h >= h_min;
-// runs that fail (large h) are left out. The reference must be good to
-// ~1e-15: errors below 1e-13 are not fitted. The order is the slope over the
+// Divides h by ratio (halves it by default) from h0 while the contact error
+// stays above 10 * floor and h >= h_min; runs that fail (large h) are left
+// out. The reference must be good to ~floor / 10: errors below 10 * floor
+// are not fitted (by default 1e-13, for a reference good to ~1e-15). The order is the slope over the
 // three smallest steps above that floor (and below 0.1), the most asymptotic
 // data there is: high-order pairs such as dopri5 approach their order from
 // above and would read high over a wider range.
 inline Convergence measure_convergence(const Integrator& method, const Problem& problem, double t_end,
-                                       const FlatState& ref, double h0 = 0.5, double h_min = 1e-4) {
+                                       const FlatState& ref, double h0 = 0.5, double h_min = 1e-4,
+                                       double floor = 1e-14, double ratio = 2.0) {
   Convergence c;
-  for (double h = h0; h >= h_min; h /= 2) {
+  for (double h = h0; h >= h_min; h /= ratio) {
     RunOptions options;
     options.t_end = t_end;
     options.h = h;
@@ -54,11 +56,11 @@ inline Convergence measure_convergence(const Integrator& method, const Problem& 
       c.omega.push_back(e.omega);
       c.rotation.push_back(e.rotation);
     }
-    if (e.contact < 1e-13) break;
+    if (e.contact < 10 * floor) break;
   }
-  c.contact_fit = fit_order(c.h, c.contact, 1e-14, 0.1, 3);
-  c.omega_fit = fit_order(c.h, c.omega, 1e-14, 0.1, 3);
-  c.rotation_fit = fit_order(c.h, c.rotation, 1e-14, 0.1, 3);
+  c.contact_fit = fit_order(c.h, c.contact, floor, 0.1, 3);
+  c.omega_fit = fit_order(c.h, c.omega, floor, 0.1, 3);
+  c.rotation_fit = fit_order(c.h, c.rotation, floor, 0.1, 3);
   return c;
 }
 
