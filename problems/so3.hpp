@@ -23,9 +23,7 @@ inline Mat3 hat(const Vec3& w) {
 // series to t^8 is used: its truncation error is below 3e-18 relative, under
 // rounding, and it avoids the sincos call, the square root and the division
 // (about a tenth of an RKMK4 step), as well as the cancellation in 1 - cos t.
-// Always inlined into the step loops: out of line (callgrind: 47
-// instructions a step of rkmk4) its arguments and result pass through memory.
-[[gnu::always_inline]] inline Mat3 so3_exp(const Vec3& z) {
+inline Mat3 so3_exp(const Vec3& z) {
   const double t2 = z.squaredNorm();
   double a, b;
   if (t2 < 1e-2) {
@@ -94,8 +92,7 @@ inline constexpr double kDexpinvMaxAngle = 2.0 * M_PI * (15.0 / 16.0);
 // |u| >= kDexpinvMaxAngle the exact form is NaN, never a wrong number: a
 // fixed-step run ends "diverged" at the last valid state, an adaptive
 // step is rejected and shrunk.
-// Always inlined, as so3_exp (out of line: 26 instructions a call, callgrind).
-[[gnu::always_inline]] inline Vec3 dexpinv(const Vec3& u, const Vec3& w, DexpinvKind kind = DexpinvKind::exact) {
+inline Vec3 dexpinv(const Vec3& u, const Vec3& w, DexpinvKind kind = DexpinvKind::exact) {
   const Vec3 uw = u.cross(w);
   const Vec3 uuw = u.cross(uw);
   double c;
