@@ -1,6 +1,9 @@
 #pragma once
 // Shared by the registry-wide tests: errors of a run against a reference
 // state and the observed order of a fixed-step method on one problem.
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -31,16 +34,37 @@ struct Convergence {
   OrderFit contact_fit, omega_fit, rotation_fit;
 };
 
-// Halves h from h0 while the contact error stays above 1e-13 and h >= h_min;
-// runs that fail (large h) are left out. The reference must be good to
-// ~1e-15: errors below 1e-13 are not fitted. The order is the slope over the
-// three smallest steps above that floor (and below 0.1), the most asymptotic
-// data there is: high-order pairs such as dopri5 approach their order from
-// above and would read high over a wider range.
+// The ladder of steps a convergence measurement runs, and the floor below
+// which an error is rounding (or the reference's own error), per component.
+struct Ladder {
+  double h0 = 0.5;     // the first step
+  double h_min = 1e-4; // no step below this
+  double ratio = 2.0;  // h falls by this factor
+  // errors below 10 * floor are not fitted; a reference good to ~floor / 10
+  EndErrors floor{1e-14, 1e-14, 1e-14};
+  // > 0: floor is the rounding of a run of this many steps, and a run of n
+  // steps has floor * sqrt(n / floor_steps) (rounding adds up like a random
+  // walk, so a run of many small steps has more of it than the reference)
+  long floor_steps = 0;
+  std::size_t points = 3;  // at most this many points per fit
+  // the ladder ends at the first run whose contact error is below this
+  // (0: below 10 * its floor); a method's solver may have a floor of its own
+  double stop = 0.0;
+};
+
+// Runs method down the ladder while the contact error stays above 10 * its
+// floor (or ladder.stop); runs that fail (large h) are left out. Each run is recorded at the step
+// it took, t_end / steps: a ratio such as sqrt(2) does not divide t_end,
+// and the driver then takes equal steps a little shorter than h (recording
+// h instead makes the local slopes zigzag by +-1.5 for order 8). The order
+// is the slope over the smallest steps above the floor (and below 0.1), the
+// most asymptotic data there is: high-order pairs such as dopri5 approach
+// their order from above and would read high over a wider range.
 inline Convergence measure_convergence(const Integrator& method, const Problem& problem, double t_end,
-                                       const FlatState& ref, double h0 = 0.5, double h_min = 1e-4) {
+                                       const FlatState& ref, const Ladder& ladder = {}) {
   Convergence c;
-  for (double h = h0; h >= h_min; h /= 2) {
+  constexpr double kNotFitted = std::numeric_limits<double>::quiet_NaN();
+  for (double h = ladder.h0; h >= ladder.h_min; h /= ladder.ratio) {
     RunOptions options;
     options.t_end = t_end;
     options.h = h;
@@ -48,17 +72,22 @@ inline Convergence measure_convergence(const Integrator& method, const Problem& 
     if (run.status != Status::ok) continue;
     const EndErrors e = end_errors(problem, run.final_state, ref);
     c.final_defect = rotation_defect(rotation_of(run.final_state));
+    const double steps = static_cast<double>(run.cost.steps);
+    const double growth =
+        ladder.floor_steps > 0 ? std::sqrt(std::max(1.0, steps / static_cast<double>(ladder.floor_steps))) : 1.0;
+    // an error on its floor reads as no point at all (fit_order skips NaN)
+    const auto above = [&](double error, double floor) { return error > 10.0 * floor * growth ? error : kNotFitted; };
     if (e.contact < 1e-3) {
-      c.h.push_back(h);
-      c.contact.push_back(e.contact);
-      c.omega.push_back(e.omega);
-      c.rotation.push_back(e.rotation);
+      c.h.push_back(t_end / steps);
+      c.contact.push_back(above(e.contact, ladder.floor.contact));
+      c.omega.push_back(above(e.omega, ladder.floor.omega));
+      c.rotation.push_back(above(e.rotation, ladder.floor.rotation));
     }
-    if (e.contact < 1e-13) break;
+    if (e.contact < (ladder.stop > 0.0 ? ladder.stop : 10.0 * ladder.floor.contact * growth)) break;
   }
-  c.contact_fit = fit_order(c.h, c.contact, 1e-14, 0.1, 3);
-  c.omega_fit = fit_order(c.h, c.omega, 1e-14, 0.1, 3);
-  c.rotation_fit = fit_order(c.h, c.rotation, 1e-14, 0.1, 3);
+  c.contact_fit = fit_order(c.h, c.contact, 0.0, 0.1, ladder.points);
+  c.omega_fit = fit_order(c.h, c.omega, 0.0, 0.1, ladder.points);
+  c.rotation_fit = fit_order(c.h, c.rotation, 0.0, 0.1, ladder.points);
   return c;
 }
 
