@@ -6,11 +6,9 @@
 //
 // - Local error h sum_i e_i k_i, each component against
 //   atol + rtol max(|y_n,i|, |y_n+1,i|); norm: root mean square (Hairer's).
-// - PI controller (Gustafsson) with MuntheKaasAdaptive's constants, a part of
-//   its own in flat_embedded.cpp (to move onto the shared controllers): after an
-//   accepted step h_new = h * 0.9 err^(-0.7/k) err_prev^(0.4/k), the factor
-//   kept in [0.2, 10] and at most 1 right after a rejection; a rejection
-//   shrinks by 0.9 err^(-1/k), at least to 0.2 h; k = the pair's error_order.
+// - The step size comes from the shared controllers
+//   (integrators/controllers/): Gustafsson's PI by default, as for
+//   MuntheKaasAdaptive; RunOptions::controller chooses another.
 // - No dense output: steps are clamped to land on every output time.
 // - FSAL where the pair has it (fsal < stages): the stage at (t + h, y_new)
 //   starts the next step; otherwise F(y_new) is evaluated after acceptance.
@@ -28,6 +26,7 @@ class RungeKuttaAdaptive final : public Integrator {
   std::string family() const override { return "rk-adaptive"; }
   int declared_order() const override { return pair_.order; }
   bool adaptive() const override { return true; }
+  std::string controller() const override { return "pi"; }
   std::string description() const override;
   RunResult integrate(const Problem& problem, const RunOptions& options) const override;
 
