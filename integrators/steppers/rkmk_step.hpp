@@ -1,0 +1,75 @@
+#pragma once
+// One Runge-Kutta-Munthe-Kaas step (MODEL.md, family 3), shared by RKMK with
+// the exponential (munthe_kaas.cpp) and with the Cayley map
+// (rkmk_cayley.cpp): the coordinate map is a parameter.
+#include <array>
+
+#include "integrators/cayley.hpp"
+#include "integrators/fixed_step.hpp"
+#include "problems/so3.hpp"
+
+namespace rb {
+
+// exp by Rodrigues' formula and its dexpinv (closed form, series or the
+// seminar's).
+struct ExpCoordinates {
+  DexpinvKind kind;
+  Mat3 exp(const Vec3& u) const { return so3_exp(u); }
+  Vec3 dexpinv(const Vec3& u, const Vec3& w) const { return rb::dexpinv(u, w, kind); }
+};
+
+// The Cayley map and its dcayinv, counted as exp and dexpinv.
+struct CayleyCoordinates {
+  Mat3 exp(const Vec3& u) const { return so3_cay(u); }
+  Vec3 dexpinv(const Vec3& u, const Vec3& w) const { return dcayinv(u, w); }
+};
+
+// One step with S stages (S = 0: any number), so that the stage loop unrolls
+// around the inlined right-hand side, as in runge_kutta.cpp.
+template <int S, class Coordinates>
+struct MkStep {
+  const Problem& problem;
+  const StageTerms& terms;
+  Coordinates map;                    // exp and dexpinv, or cay and dcayinv
+  bool anisotropic;                   // stage orientations needed
+  std::array<Vec3, kMaxStages>& K;    // u' at the stages
+  std::array<ZState, kMaxStages>& L;  // z' at the stages
+
+  // margins: the validity margins at y, from the first stage (at y itself)
+  void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost,
+                  ModelMargins& margins) const {
+    const int stages = S > 0 ? S : terms.stages;
+    const ZState z = z_of(y);
+    const Mat3 R = rotation_of(y);
+    // the first stage, at u = 0 (dexpinv the identity) and R itself
+    problem.lie_rhs(R, z.data(), K[0].data(), L[0].data(), margins);
+    for (std::size_t i = 1; i < static_cast<std::size_t>(stages); ++i) {
+      const StageTerms::Row& row = terms.a[i];
+      // U = sum h a_ij K_j, Z = z + sum h a_ij L_j over the non-zero terms
+      ZState Z;
+      Vec3 U;
+      row.sum(Z, z, h, L);
+      row.sum(U, h, K);
+      Vec3 omega;
+      if (anisotropic) {
+        // R enters omega and G: evaluate at the stage's own orientation
+        problem.lie_rhs(Mat3(map.exp(U) * R), Z.data(), omega.data(), L[i].data());
+        ++cost.exp_evals;
+      } else {
+        problem.lie_rhs(R, Z.data(), omega.data(), L[i].data());
+      }
+      K[i] = map.dexpinv(U, omega);
+      ++cost.dexpinv_evals;
+    }
+    Vec3 u;
+    ZState dz;
+    terms.b.sum(u, h, K);
+    terms.b.sum(dz, h, L);
+    set_rotation(next, map.exp(u) * R);
+    next.tail<kZSize>() = z + dz;
+    cost.rhs_evals += stages;
+    ++cost.exp_evals;
+  }
+};
+
+}  // namespace rb
