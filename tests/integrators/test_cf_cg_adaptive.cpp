@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <stdexcept>
 
 #include "integrators/registry.hpp"
@@ -21,20 +20,10 @@ namespace {
 
 using testing::valley;
 
-const Problem& scene(const char* name) {
-  static std::map<std::string, Problem> problems;
-  auto it = problems.find(name);
-  if (it == problems.end()) it = problems.emplace(name, make_problem(load_scene(name))).first;
-  return it->second;
-}
+const Problem& scene(const char* name) { return testing::shipped_scene(name); }
 
-RunOptions tolerance(double tol, double t_end, double dt) {
-  RunOptions o;
-  o.t_end = t_end;
-  o.rtol = o.atol = tol;
-  for (int k = 1; k * dt < t_end - 1e-12; ++k) o.output_times.push_back(k * dt);
-  return o;
-}
+// rtol = atol = tol to t_end, an output every dt
+RunOptions tolerance(double tol, double t_end, double dt) { return testing::tolerance_every(tol, dt, t_end); }
 
 // one field per exponential: the weight of each factor
 std::vector<double> weights_of(const ExpProduct& p) {
