@@ -3,6 +3,7 @@
 #include "integrators/steppers/baselines.hpp"
 #include "integrators/steppers/commutator_free.hpp"
 #include "integrators/steppers/crouch_grossman.hpp"
+#include "integrators/steppers/exp_product_adaptive.hpp"
 #include "integrators/steppers/gsl.hpp"
 #include "integrators/steppers/explicit_midpoint.hpp"
 #include "integrators/steppers/munthe_kaas.hpp"
@@ -64,6 +65,7 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   add(std::make_unique<ExpProductMethod>(reversed(schemes::cf4(), "cf4-reversed")));
   add(std::make_unique<ExpProductMethod>(reversed(schemes::cg3(), "cg3-reversed")));
   add(std::make_unique<ExpProductMethod>(reversed(schemes::cg4a(), "cg4a-reversed")));
+  add(std::make_unique<ExpProductAdaptive>(schemes::cg3_pair()));
   add(std::make_unique<MuntheKaasCayley>(t::rk4(), "rkmk4-cayley"));
   // --- end commutator-free and Crouch-Grossman ---
 

@@ -13,6 +13,16 @@
 // copies print a54 = -1.1092979392113565, but only -1.1092979392113465 sums
 // row 5 to c_5 = 0.8768903263420429.
 //
+// cg3-adaptive: cg3 with the embedded weights b^ = (3/4, 31/4, -15/2) on
+// the same stages, from K. Engo and A. Marthinsen, "Modeling and solution
+// of some mechanical problems on Lie groups", Multibody System Dynamics 2
+// (1998) 71-88, tableau (5); ManifoldDiffEq.jl's CG2_3 uses them (it
+// propagates b^; here cg3's b propagates and b^ only measures the error).
+// b^ meets the classical order-2 conditions (sum b^ = 1, sum b^ c = 1/2;
+// order 2 needs no other Crouch-Grossman condition) and misses order 3
+// (sum b^ c^2 = 229/384, not 1/3), so the estimate is O(h^3); both are
+// checked in test_cf_cg_adaptive.cpp.
+//
 // The ordering: the Crouch-Grossman order conditions are derived for
 // y_1 = exp(h b_s F_s) o ... o exp(h b_1 F_1) (y_0), each flow applied to
 // the result of the one before, so F_1's flow acts first and F_s's last
@@ -28,7 +38,18 @@ namespace rb::schemes {
 
 namespace {
 
-// the Crouch-Grossman shape: one field per exponential, F_1 first
+// exp(w_s F_s) ... exp(w_1 F_1): one field per exponential, F_1 first
+ExpProduct one_field_each(const std::vector<double>& w) {
+  ExpProduct p;
+  for (std::size_t j = 0; j < w.size(); ++j) {
+    FieldSum f(j + 1, 0.0);
+    f[j] = w[j];
+    p.push_back(f);
+  }
+  return p;
+}
+
+// the Crouch-Grossman shape
 ExpProductScheme crouch_grossman(std::string name, int order, const std::vector<std::vector<double>>& a,
                                  const std::vector<double>& b, std::string source) {
   ExpProductScheme s;
@@ -36,18 +57,9 @@ ExpProductScheme crouch_grossman(std::string name, int order, const std::vector<
   s.family = "cg";
   s.kind = "Crouch-Grossman";
   s.order = order;
-  auto product = [](const std::vector<double>& row) {
-    ExpProduct p;
-    for (std::size_t j = 0; j < row.size(); ++j) {
-      FieldSum f(j + 1, 0.0);
-      f[j] = row[j];
-      p.push_back(f);
-    }
-    return p;
-  };
   s.stages.push_back({});
-  for (const auto& row : a) s.stages.push_back(product(row));
-  s.update = product(b);
+  for (const auto& row : a) s.stages.push_back(one_field_each(row));
+  s.update = one_field_each(b);
   s.source = std::move(source);
   return s;
 }
@@ -57,6 +69,15 @@ ExpProductScheme crouch_grossman(std::string name, int order, const std::vector<
 ExpProductScheme cg3() {
   return crouch_grossman("cg3", 3, {{3.0 / 4}, {119.0 / 216, 17.0 / 108}}, {13.0 / 51, -2.0 / 3, 24.0 / 17},
                          "Owren and Marthinsen, BIT 39 (1999)");
+}
+
+ExpProductScheme cg3_pair() {
+  ExpProductScheme s = cg3();
+  s.name = "cg3-adaptive";
+  s.embedded = one_field_each({3.0 / 4, 31.0 / 4, -15.0 / 2});
+  s.embedded_order = 2;
+  s.source += "; embedded order-2 weights: Engo and Marthinsen (1998), tableau (5)";
+  return s;
 }
 
 ExpProductScheme cg4a() {

@@ -7,6 +7,8 @@
 namespace rb::schemes {
 
 ExpProductScheme cg3();
+// cg3 with an embedded order-2 update, for cg3-adaptive
+ExpProductScheme cg3_pair();
 ExpProductScheme cg4a();
 
 }  // namespace rb::schemes

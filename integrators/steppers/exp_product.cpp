@@ -4,14 +4,14 @@
 #include <array>
 #include <stdexcept>
 
-#include "integrators/fixed_step.hpp"
-#include "problems/so3.hpp"
+#include "integrators/steppers/exp_product_stages.hpp"
 
 namespace rb {
 
 ExpProductScheme reversed(ExpProductScheme scheme, std::string name) {
   for (ExpProduct& product : scheme.stages) std::reverse(product.begin(), product.end());
   std::reverse(scheme.update.begin(), scheme.update.end());
+  std::reverse(scheme.embedded.begin(), scheme.embedded.end());
   scheme.name = std::move(name);
   scheme.rotation_order = std::min(scheme.order, 2);
   scheme.source += ", every product composed in the opposite order";
@@ -20,24 +20,7 @@ ExpProductScheme reversed(ExpProductScheme scheme, std::string name) {
 
 namespace {
 
-using Row = StageTerms::Row;
-
-// A product as the step runs it: its non-zero factors, and the stage whose
-// orientation is the product of its first factors (CF4's Y_4 continues
-// from Y_2), so that no exponential is computed twice.
-struct PlannedProduct {
-  int base = -1;  // -1: R_n itself
-  int count = 0;
-  std::array<Row, kMaxStages> factor;  // the rest, in the order applied
-};
-
-struct Plan {
-  int stages = 0;
-  std::array<PlannedProduct, kMaxStages> stage;
-  PlannedProduct update;
-  std::array<Row, kMaxStages> z_stage;  // Z_i - z = h sum over stage i's factors
-  Row z_update;
-};
+using Row = ExpRow;
 
 Row row_of(const FieldSum& sum, std::size_t fields, const std::string& where) {
   if (sum.size() > fields) throw std::invalid_argument(where + " uses a field not yet computed");
@@ -62,11 +45,13 @@ Row z_row_of(const std::vector<FieldSum>& factors, std::size_t fields) {
   return row_of(total, fields, "");
 }
 
-Plan plan_of(const ExpProductScheme& scheme) {
+}  // namespace
+
+ExpPlan plan_of(const ExpProductScheme& scheme) {
   const std::size_t s = scheme.stages.size();
   if (s < 1 || s > static_cast<std::size_t>(kMaxStages) || !scheme.stages[0].empty())
     throw std::invalid_argument(scheme.name + ": 1 to 16 stages, the first with no exponentials");
-  Plan plan;
+  ExpPlan plan;
   plan.stages = static_cast<int>(s);
   std::vector<std::vector<FieldSum>> factors(s);
   auto plan_product = [&](const std::vector<FieldSum>& mine, std::size_t fields, const std::string& where,
@@ -96,54 +81,13 @@ Plan plan_of(const ExpProductScheme& scheme) {
     throw std::invalid_argument(scheme.name + ": the update needs 1 to 16 exponentials");
   plan.update = plan_product(update, s, scheme.name + " update", 1);
   plan.z_update = z_row_of(update, s);
+  const std::vector<FieldSum> embedded = nonzero_factors(scheme.embedded);
+  if (embedded.size() > static_cast<std::size_t>(kMaxStages))
+    throw std::invalid_argument(scheme.name + ": the embedded update needs at most 16 exponentials");
+  plan.embedded = plan_product(embedded, s, scheme.name + " embedded update", 1);
+  plan.z_embedded = z_row_of(embedded, s);
   return plan;
 }
-
-struct ExpProductStep {
-  const Problem& problem;
-  const Plan& plan;
-  bool anisotropic;                   // stage orientations needed
-  std::array<Vec3, kMaxStages>& K;    // omega at the stages
-  std::array<ZState, kMaxStages>& L;  // z' at the stages
-  std::array<Mat3, kMaxStages>& Rs;   // the stage orientations
-
-  Mat3 apply(const PlannedProduct& p, const Mat3& R, double h, Cost& cost) const {
-    Mat3 M = p.base < 0 ? R : Rs[static_cast<std::size_t>(p.base)];
-    for (std::size_t n = 0; n < static_cast<std::size_t>(p.count); ++n) {
-      Vec3 U;
-      p.factor[n].sum(U, h, K);
-      M = so3_exp(U) * M;
-    }
-    cost.exp_evals += p.count;
-    return M;
-  }
-
-  // margins: the validity margins at y, from the first stage (at y itself)
-  void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost,
-                  ModelMargins& margins) const {
-    const ZState z = z_of(y);
-    const Mat3 R = rotation_of(y);
-    problem.lie_rhs(R, z.data(), K[0].data(), L[0].data(), margins);
-    for (std::size_t i = 1; i < static_cast<std::size_t>(plan.stages); ++i) {
-      ZState Z;
-      plan.z_stage[i].sum(Z, z, h, L);
-      if (anisotropic) {
-        // R enters omega and G: evaluate at the stage's own orientation
-        Rs[i] = apply(plan.stage[i], R, h, cost);
-        problem.lie_rhs(Rs[i], Z.data(), K[i].data(), L[i].data());
-      } else {
-        problem.lie_rhs(R, Z.data(), K[i].data(), L[i].data());
-      }
-    }
-    ZState dz;
-    plan.z_update.sum(dz, h, L);
-    set_rotation(next, apply(plan.update, R, h, cost));
-    next.tail<kZSize>() = z + dz;
-    cost.rhs_evals += plan.stages;
-  }
-};
-
-}  // namespace
 
 ExpProductMethod::ExpProductMethod(ExpProductScheme scheme) : scheme_(std::move(scheme)) {
   plan_of(scheme_);  // rejects a malformed scheme here, not in a run
@@ -157,7 +101,7 @@ std::string ExpProductMethod::description() const {
 }
 
 int ExpProductMethod::exponentials_per_step(bool anisotropic) const {
-  const Plan plan = plan_of(scheme_);
+  const ExpPlan plan = plan_of(scheme_);
   int n = plan.update.count;
   if (anisotropic)
     for (std::size_t i = 1; i < static_cast<std::size_t>(plan.stages); ++i) n += plan.stage[i].count;
@@ -165,7 +109,7 @@ int ExpProductMethod::exponentials_per_step(bool anisotropic) const {
 }
 
 RunResult ExpProductMethod::integrate(const Problem& problem, const RunOptions& options) const {
-  const Plan plan = plan_of(scheme_);
+  const ExpPlan plan = plan_of(scheme_);
   std::array<Vec3, kMaxStages> K;
   std::array<ZState, kMaxStages> L;
   std::array<Mat3, kMaxStages> Rs;

@@ -29,11 +29,13 @@ struct ExpProductScheme {
   int rotation_order = 0;          // where the composition loses order in R; 0: order
   std::vector<ExpProduct> stages;  // stage i's product (stage 0: empty, R_n itself)
   ExpProduct update;               // R_{n+1}
+  ExpProduct embedded;             // a lower-order R_{n+1} for an error estimate (empty: none)
+  int embedded_order = 0;          // its order (0: none)
   std::string source;              // where the coefficients are from
 };
 
 // The same factors with every product (stages and update) composed in the
-// opposite order, under the name given: what an implementation that reads
+// opposite order (the embedded update too), under the name given: what an implementation that reads
 // the paper's products the other way round computes. Its order stays the
 // paper's (what a user of it expects); its rotation_order is 2: the h^3
 // commutator term of the update changes sign (crouch_grossman.cpp), and

@@ -16,6 +16,7 @@
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"
+#include "tests/integrators/fixtures.hpp"
 
 namespace rb {
 namespace {
@@ -116,20 +117,8 @@ TEST(LieAdaptive, RefusesPairsThatDoNotFit) {
 
 // ---- runs ----
 
-const Problem& scene(const std::string& name) {
-  static std::map<std::string, Problem> problems;
-  auto it = problems.find(name);
-  if (it == problems.end()) it = problems.emplace(name, make_problem(load_scene(name))).first;
-  return it->second;
-}
-
-RunOptions tolerance_every(double tol, double dt, double t_end) {
-  RunOptions o;
-  o.t_end = t_end;
-  o.rtol = o.atol = tol;
-  for (int k = 1; k * dt < t_end - 1e-12; ++k) o.output_times.push_back(k * dt);
-  return o;
-}
+using testing::shipped_scene;
+using testing::tolerance_every;
 
 const char* const kAdaptive[] = {"rkmk-bs32-adaptive", "rkmk-dp54-adaptive", "rkmk-dp853-adaptive",
                                  "rkmk-f78-adaptive"};
@@ -148,7 +137,7 @@ TEST(LieAdaptive, RegisteredAsAdaptiveLieMethods) {
 
 TEST(LieAdaptive, RotationStaysOnSO3OnEveryShippedScene) {
   for (const std::string& name : shipped_scene_names()) {
-    const Problem& p = scene(name);
+    const Problem& p = shipped_scene(name);
     for (const char* method : {"rkmk-bs32-adaptive", "rkmk-dp54-adaptive", "rkmk-dp853-adaptive",
                                "rkmk-f78-adaptive", "rkmk5", "rkmk8"}) {
       const Integrator& m = find_integrator(method);
@@ -169,7 +158,7 @@ TEST(LieAdaptive, RotationStaysOnSO3OnEveryShippedScene) {
 // tolerances of each other, and within the registry's 100 of a fine reference
 // (BS32's global error in R reaches 10 tolerances by t = 1).
 TEST(LieAdaptive, DenseOutputAgreesWithSteppingToTheSameTime) {
-  const Problem& p = scene("valley-sideways");
+  const Problem& p = shipped_scene("valley-sideways");
   for (const char* method : {"rkmk-bs32-adaptive", "rkmk-dp54-adaptive", "rkmk-dp853-adaptive"}) {
     const Integrator& m = find_integrator(method);
     SCOPED_TRACE(method);
@@ -200,7 +189,7 @@ TEST(LieAdaptive, DenseOutputAgreesWithSteppingToTheSameTime) {
 
 // Clamped steps (no dense output) record the same outputs to the tolerance.
 TEST(LieAdaptive, DenseAndClampedOutputsAgree) {
-  const Problem& p = scene("bowl-3d");
+  const Problem& p = shipped_scene("bowl-3d");
   const MuntheKaasAdaptive dense(pairs::dormand_prince853(), "dense");
   const MuntheKaasAdaptive clamped(pairs::dormand_prince853(), "clamped", false);
   const RunOptions o = tolerance_every(1e-9, 0.05, 2.0);
@@ -220,7 +209,7 @@ TEST(LieAdaptive, DenseAndClampedOutputsAgree) {
 // rhs for the next first stage where it is not an attempt's stage); per
 // interpolated output one exp; 2 rhs for the initial step and 1 at the start.
 TEST(LieAdaptive, CountsRhsExpAndDexpinv) {
-  const Problem& p = scene("gaussian-hills");
+  const Problem& p = shipped_scene("gaussian-hills");
   for (const char* method : kAdaptive) {
     const auto& m = dynamic_cast<const MuntheKaasAdaptive&>(find_integrator(method));
     const EmbeddedPair& pair = m.pair();
@@ -247,7 +236,7 @@ TEST(LieAdaptive, CountsRhsExpAndDexpinv) {
 // R(t) R0 is the solution) gives the same steps and the same z, bit for bit.
 // The first step is given: initial_step guesses it on the flat view.
 TEST(LieAdaptive, ErrorEstimateDoesNotSeeR) {
-  const Problem& p = scene("valley-sideways");
+  const Problem& p = shipped_scene("valley-sideways");
   FlatState y0 = p.y0();
   const Mat3 R0 = so3_exp(Vec3(0.3, -1.1, 2.0));
   set_rotation(y0, rotation_of(p.y0()) * R0);

@@ -1,0 +1,109 @@
+#include "integrators/steppers/exp_product_adaptive.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "integrators/driver.hpp"
+#include "integrators/steppers/exp_product_stages.hpp"
+
+namespace rb {
+
+namespace {
+
+// The pair's steps for drive_adaptive (integrators/driver.hpp): an error
+// norm for the controller, which decides.
+class ExpPairStepper {
+ public:
+  static constexpr bool dense_output = false;
+
+  ExpPairStepper(const Problem& problem, const ExpPlan& plan, int error_order, const Tolerances& tol)
+      : problem_(&problem),
+        step_{problem, plan, problem.model().anisotropic(), K_, L_, Rs_},
+        error_order_(error_order),
+        tol_(tol),
+        R_(rotation_of(problem.y0())),
+        z_(z_of(problem.y0())) {}
+
+  int error_order() const { return error_order_; }
+
+  // The error norm of a step of h (NaN when the step is not finite); the
+  // step is kept in R_new_, dz_new_ for accept.
+  double try_step(double /*t*/, double h, Cost& cost) {
+    if (!have_first_) {
+      problem_->lie_rhs(R_, z_.data(), K_[0].data(), L_[0].data());
+      ++cost.rhs_evals;
+      have_first_ = true;
+    }
+    step_.later_stages(R_, z_, h, cost);
+    R_new_ = step_.apply(step_.plan.update, R_, h, cost);
+    const Mat3 R_low = step_.apply(step_.plan.embedded, R_, h, cost);
+    step_.plan.z_update.sum(dz_new_, h, L_);
+    ZState dz_low;
+    step_.plan.z_embedded.sum(dz_low, h, L_);
+    if (!(R_new_.allFinite() && dz_new_.allFinite() && R_low.allFinite() && dz_low.allFinite()))
+      return std::numeric_limits<double>::quiet_NaN();
+    // vee of the skew part of R_high R_low^T
+    const Mat3 D = R_new_ * R_low.transpose();
+    const Vec3 e_rot(D(2, 1) - D(1, 2), D(0, 2) - D(2, 0), D(1, 0) - D(0, 1));
+    const ZState z_new = z_ + dz_new_;
+    const ZState z_scale = (tol_.atol + tol_.rtol * z_.cwiseAbs().cwiseMax(z_new.cwiseAbs()).array()).matrix();
+    const double sum = (0.5 * e_rot / (tol_.atol + tol_.rtol)).squaredNorm() +
+                       ((dz_new_ - dz_low).array() / z_scale.array()).square().sum();
+    return std::sqrt(sum / static_cast<double>(3 + kZSize));
+  }
+
+  void accept(double /*t*/, double /*h*/, Cost& /*cost*/) {
+    R_ = R_new_;
+    z_ += dz_new_;
+    have_first_ = false;  // the next attempt starts at the new state
+  }
+
+  void state(FlatState& y) const {
+    set_rotation(y, R_);
+    y.tail<kZSize>() = z_;
+  }
+  void interpolate(double, FlatState& y) const { state(y); }
+
+ private:
+  const Problem* problem_;
+  std::array<Vec3, kMaxStages> K_;
+  std::array<ZState, kMaxStages> L_;
+  std::array<Mat3, kMaxStages> Rs_;
+  ExpProductStep step_;
+  int error_order_;
+  Tolerances tol_;
+  Mat3 R_, R_new_;
+  ZState z_, dz_new_;
+  bool have_first_ = false;
+};
+
+}  // namespace
+
+ExpProductAdaptive::ExpProductAdaptive(ExpProductScheme scheme) : scheme_(std::move(scheme)) {
+  if (scheme_.embedded_order < 1 || plan_of(scheme_).embedded.count == 0)
+    throw std::invalid_argument(scheme_.name + ": an adaptive method needs an embedded update and its order");
+}
+
+std::string ExpProductAdaptive::description() const {
+  const ExpPlan plan = plan_of(scheme_);
+  int stage_exps = 0;
+  for (std::size_t i = 1; i < static_cast<std::size_t>(plan.stages); ++i) stage_exps += plan.stage[i].count;
+  const int update_exps = plan.update.count + plan.embedded.count;
+  return "adaptive " + scheme_.kind + " method, order " + std::to_string(scheme_.order) + " with an embedded order-" +
+         std::to_string(scheme_.embedded_order) + " update (error on (rotation vector, z), PI controller): " +
+         std::to_string(plan.stages - 1) + " rhs and " + std::to_string(stage_exps + update_exps) +
+         " exponentials an attempt (" + std::to_string(update_exps) +
+         " for a homogeneous ball); steps clamped onto the outputs: " + scheme_.source;
+}
+
+RunResult ExpProductAdaptive::integrate(const Problem& problem, const RunOptions& options) const {
+  const ExpPlan plan = plan_of(scheme_);
+  const int error_order = std::min(scheme_.order, scheme_.embedded_order) + 1;
+  ExpPairStepper stepper(problem, plan, error_order, tolerances_of(options));
+  return drive_adaptive(problem, options, scheme_.order, stepper, controller_of(controller(), options));
+}
+
+}  // namespace rb

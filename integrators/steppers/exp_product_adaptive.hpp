@@ -1,0 +1,43 @@
+#pragma once
+// An exponential-product scheme with an embedded update (ExpProductScheme::
+// embedded), adaptive: both updates are products over the same stages; the
+// scheme's update propagates, the embedded one only measures the error.
+//
+// - The local error: for R the rotation vector of R_high R_low^T, taken as
+//   vee of its skew part (sin(angle) axis: equal to O(angle^3), and the
+//   angle is the error's size), against atol + rtol (R's entries are of
+//   size 1, as a flat method sees them); for z componentwise against
+//   atol + rtol max(|z_n,i|, |z_n+1,i|). Norm: root mean square over the
+//   3 + 5 components, as the RKMK pairs (munthe_kaas_adaptive.hpp).
+// - The step size comes from a controller (integrators/controllers/): by
+//   default the PI, RunOptions::controller chooses another.
+// - No dense output: steps are clamped to land on every output time.
+//
+// Cost per attempt: (stages - 1) rhs evaluations (the first stage once per
+// accepted step), the stage exponentials on an anisotropic ball, and the
+// exponentials of both updates.
+#include "integrators/integrator.hpp"
+#include "integrators/steppers/exp_product.hpp"
+
+namespace rb {
+
+class ExpProductAdaptive final : public Integrator {
+ public:
+  // Throws std::invalid_argument for a scheme without an embedded update
+  // or a malformed one.
+  explicit ExpProductAdaptive(ExpProductScheme scheme);
+  std::string name() const override { return scheme_.name; }
+  std::string family() const override { return scheme_.family; }
+  int declared_order() const override { return scheme_.order; }
+  bool adaptive() const override { return true; }
+  std::string controller() const override { return "pi"; }
+  std::string description() const override;
+  RunResult integrate(const Problem& problem, const RunOptions& options) const override;
+
+  const ExpProductScheme& scheme() const { return scheme_; }
+
+ private:
+  ExpProductScheme scheme_;
+};
+
+}  // namespace rb

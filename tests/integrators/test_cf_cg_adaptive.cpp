@@ -1,0 +1,150 @@
+// cg3-adaptive: cg3 with the embedded order-2 weights of Engo and
+// Marthinsen. The weights against their order conditions, R on SO(3), the
+// error falling with the tolerance on a closed-form scene and where R feeds
+// back, and the counts of an attempt.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "integrators/registry.hpp"
+#include "integrators/steppers/crouch_grossman.hpp"
+#include "integrators/steppers/exp_product_adaptive.hpp"
+#include "problems/scene.hpp"
+#include "problems/so3.hpp"
+#include "tests/integrators/fixtures.hpp"
+
+namespace rb {
+namespace {
+
+using testing::valley;
+
+const Problem& scene(const char* name) { return testing::shipped_scene(name); }
+
+// rtol = atol = tol to t_end, an output every dt
+RunOptions tolerance(double tol, double t_end, double dt) { return testing::tolerance_every(tol, dt, t_end); }
+
+// one field per exponential: the weight of each factor
+std::vector<double> weights_of(const ExpProduct& p) {
+  std::vector<double> w;
+  for (const FieldSum& f : p) w.push_back(f.back());
+  return w;
+}
+
+TEST(CgAdaptive, EmbeddedWeightsHaveOrderTwoAndNotThree) {
+  const ExpProductScheme s = schemes::cg3_pair();
+  ASSERT_EQ(s.stages.size(), 3u);
+  std::vector<double> c = {0.0};
+  for (std::size_t i = 1; i < s.stages.size(); ++i) {
+    double ci = 0.0;
+    for (double a : weights_of(s.stages[i])) ci += a;
+    c.push_back(ci);
+  }
+  EXPECT_NEAR(c[1], 3.0 / 4, 1e-15);
+  EXPECT_NEAR(c[2], 17.0 / 24, 1e-15);
+  auto moment = [&](const std::vector<double>& b, int k) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < b.size(); ++i) sum += b[i] * std::pow(c[i], k);
+    return sum;
+  };
+  const std::vector<double> high = weights_of(s.update), low = weights_of(s.embedded);
+  for (const auto& b : {high, low}) {
+    EXPECT_NEAR(moment(b, 0), 1.0, 1e-14);
+    EXPECT_NEAR(moment(b, 1), 0.5, 1e-14);
+  }
+  EXPECT_NEAR(moment(high, 2), 1.0 / 3, 1e-14);
+  EXPECT_NEAR(moment(low, 2), 229.0 / 384, 1e-14);  // not 1/3: the estimate is O(h^3)
+  EXPECT_EQ(s.embedded_order, 2);
+  EXPECT_EQ(s.order, 3);
+}
+
+TEST(CgAdaptive, RegisteredAsAdaptiveCrouchGrossman) {
+  const Integrator& m = find_integrator("cg3-adaptive");
+  EXPECT_TRUE(m.adaptive());
+  EXPECT_EQ(m.family(), "cg");
+  EXPECT_EQ(m.controller(), "pi");
+  EXPECT_EQ(m.declared_order(), 3);
+}
+
+TEST(CgAdaptive, RefusesASchemeWithoutAnEmbeddedUpdate) {
+  try {
+    ExpProductAdaptive bad(schemes::cg3());
+    FAIL() << "accepted cg3 without an embedded update";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "cg3: an adaptive method needs an embedded update and its order");
+  }
+}
+
+TEST(CgAdaptive, RotationStaysOnSO3) {
+  for (const char* name : {"valley-sideways", "chaplygin-valley"}) {
+    const RunResult run = find_integrator("cg3-adaptive").integrate(scene(name), tolerance(1e-8, 2.0, 0.01));
+    ASSERT_EQ(run.status, Status::ok) << name << ": " << run.message;
+    ASSERT_GT(run.output.y.size(), 150u);
+    double worst = 0.0;
+    for (const FlatState& y : run.output.y) worst = std::max(worst, rotation_defect(rotation_of(y)));
+    EXPECT_LT(worst, 1e-13) << name;
+  }
+}
+
+// the error at t_end: the contact and the rotation angle (against a state)
+double error_against(const FlatState& y, const Vec2& alpha, const Mat3& R) {
+  return std::max((contact_of(y) - alpha).norm(), rotation_angle_between(rotation_of(y), R));
+}
+
+double closed_form_error(double tol) {
+  const Problem& p = scene("bowl-planar");
+  const RunResult run = find_integrator("cg3-adaptive").integrate(p, tolerance(tol, 2.0, 2.0));
+  EXPECT_EQ(run.status, Status::ok) << run.message;
+  const ExactState e = p.exact()->at(2.0);
+  EXPECT_TRUE(e.has_rotation);
+  return error_against(run.final_state, e.alpha, e.R);
+}
+
+double anisotropic_error(double tol) {
+  const Problem& p = scene("chaplygin-valley");
+  RunOptions fine;
+  fine.t_end = 1.0;
+  fine.h = 5e-5;
+  static const FlatState ref = find_integrator("rkmk4").integrate(p, fine).final_state;
+  const RunResult run = find_integrator("cg3-adaptive").integrate(p, tolerance(tol, 1.0, 1.0));
+  EXPECT_EQ(run.status, Status::ok) << run.message;
+  return error_against(run.final_state, contact_of(ref), rotation_of(ref));
+}
+
+// The controller holds the order-2 estimate, O(h^3), at tol, while the
+// propagated order-3 step errs O(h^4): a global error ~ tol^(4/3) / h ~
+// tol^1 (local extrapolation). 100x in tol: 100x in error, at least 10x.
+TEST(CgAdaptive, ErrorFallsWithTheTolerance) {
+  for (const auto& [what, error] : {std::pair{"bowl-planar (closed form)", &closed_form_error},
+                                    std::pair{"chaplygin-valley", &anisotropic_error}}) {
+    const double e6 = error(1e-6), e8 = error(1e-8);
+    std::printf("  %-26s error at tol 1e-6: %.3g, at 1e-8: %.3g (exponent %.2f)\n", what, e6, e8,
+                std::log10(e6 / e8) / 2);
+    EXPECT_GT(e6 / e8, 10.0) << what;
+    EXPECT_NEAR(std::log10(e6 / e8) / 2, 1.0, 0.2) << what;
+    EXPECT_LT(e6, 100 * 1e-6) << what;
+    EXPECT_LT(e8, 100 * 1e-8) << what;
+  }
+}
+
+// per attempt: 2 rhs (stages 2, 3), 3 + 3 exponentials for the two updates
+// and, where R feeds back, 1 + 2 for the stage orientations; the first
+// stage once per accepted step (h given: no rhs for a first step)
+TEST(CgAdaptive, CountsRhsAndExponentialsPerAttempt) {
+  for (const auto& [name, exps] : {std::pair{"valley-sideways", 6L}, std::pair{"chaplygin-valley", 9L}}) {
+    RunOptions o = tolerance(1e-7, 1.0, 0.1);
+    o.h = 1e-3;
+    const RunResult run = find_integrator("cg3-adaptive").integrate(scene(name), o);
+    ASSERT_EQ(run.status, Status::ok) << run.message;
+    const long attempts = run.cost.steps + run.cost.rejected;
+    EXPECT_GT(run.cost.steps, 10) << name;
+    EXPECT_EQ(run.cost.exp_evals, exps * attempts) << name;
+    EXPECT_EQ(run.cost.rhs_evals, 2 * attempts + run.cost.steps) << name;
+    EXPECT_EQ(run.cost.dexpinv_evals, 0) << name;
+    EXPECT_EQ(run.cost.validity_checks, run.cost.steps + 1) << name;
+  }
+}
+
+}  // namespace
+}  // namespace rb
