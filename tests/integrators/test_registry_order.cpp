@@ -154,7 +154,7 @@ INSTANTIATE_TEST_SUITE_P(AllRegistered, RegistryOrder, ::testing::ValuesIn(fixed
 // chaplygin_high_order_reference().
 class RegistryOrderAnisotropic : public ::testing::TestWithParam<std::string> {};
 
-TEST_P(RegistryOrderAnisotropic, ObservedOrderWithinPointTwoOfDeclared) {
+TEST_P(RegistryOrderAnisotropic, ObservedOrderWithinToleranceOfExpected) {
   expect_declared_order(find_integrator(GetParam()), chaplygin_plane(), chaplygin_high_order_reference(),
                         kAnisotropicLadder, anisotropic_tolerance);
 }
