@@ -7,41 +7,23 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
 
 #include <nlohmann/json.hpp>
 
 #include "integrators/registry.hpp"
+#include "tests/cli_run.hpp"
 
 namespace rb {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int code;
-  std::string out, err;
-};
+using Outcome = testing::CliOutcome;
+using testing::slurp;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+Outcome rollbench(const std::string& args) { return testing::run_rollbench(args); }
 
-Outcome rollbench(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path() / ("rb-cli-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string command = std::string(RB_ROLLBENCH_EXE) + " " + args + " > " + (dir / "out").string() + " 2> " +
-                              (dir / "err").string();
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "out"), slurp(dir / "err")};
-}
-
-fs::path temp_file(const std::string& name) {
-  return fs::temp_directory_path() / ("rb-cli-" + std::to_string(::getpid()) + "-" + name);
-}
+fs::path temp_file(const std::string& name) { return testing::cli_temp_file(name); }
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;

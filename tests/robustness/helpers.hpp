@@ -17,6 +17,7 @@
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
+#include "tests/cli_run.hpp"
 
 namespace rb::robustness {
 
@@ -51,31 +52,14 @@ inline Problem data_problem(const std::string& file) {
   return make_problem(load_scene(std::string(RB_TEST_DATA) + "/" + file));
 }
 
-struct CliOutcome {
-  int code;
-  std::string out, err;
-};
-
-inline std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using testing::CliOutcome;
+using testing::slurp;
 
 // A file name of this process in the temp directory.
-inline std::filesystem::path temp_path(const std::string& name) {
-  return std::filesystem::temp_directory_path() / ("rb-robust-" + std::to_string(::getpid()) + "-" + name);
-}
+inline std::filesystem::path temp_path(const std::string& name) { return testing::cli_temp_file(name); }
 
 // rollbench args, with its exit code, stdout and stderr.
-inline CliOutcome rollbench(const std::string& args) {
-  const auto out = temp_path("stdout"), err = temp_path("stderr");
-  const std::string command =
-      std::string(RB_ROLLBENCH_EXE) + " " + args + " > " + out.string() + " 2> " + err.string();
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
-}
+inline CliOutcome rollbench(const std::string& args) { return testing::run_rollbench(args); }
 
 // The first registered method of each (family, fixed | adaptive) pair:
 // every family and driver that exists, each once.
