@@ -28,6 +28,35 @@ inline EndErrors end_errors(const Problem& problem, const FlatState& y, const Fl
           rotation_angle_between(rotation_of(ref), rotation_of(y))};
 }
 
+// A run of method to t_end at fixed step h.
+inline RunResult run_at(const Integrator& method, const Problem& problem, double t_end, double h) {
+  RunOptions options;
+  options.t_end = t_end;
+  options.h = h;
+  return method.integrate(problem, options);
+}
+
+// The rounding floor of method's runs to t_end, measured rather than
+// guessed. For n = floor_steps, 2 floor_steps, ... 32 floor_steps, the runs
+// of n and n sqrt(2) steps both have truncation errors below rounding (the
+// caller picks floor_steps so), so they differ by rounding alone. Rounding
+// adds up like a random walk, so each difference is scaled to floor_steps
+// steps by sqrt(floor_steps / n), and the largest per component is the floor
+// (Ladder::floor, with Ladder::floor_steps = floor_steps): a sample maximum,
+// since any one difference may be small by chance.
+inline EndErrors rounding_floor(const Integrator& method, const Problem& problem, double t_end, long floor_steps) {
+  EndErrors floor{0.0, 0.0, 0.0};
+  for (long n = floor_steps; n <= 32 * floor_steps; n *= 2) {
+    const double h = t_end / static_cast<double>(n);
+    const EndErrors e = end_errors(problem, run_at(method, problem, t_end, h / std::sqrt(2.0)).final_state,
+                                   run_at(method, problem, t_end, h).final_state);
+    const double scale = std::sqrt(static_cast<double>(floor_steps) / static_cast<double>(n));
+    floor = {std::max(floor.contact, scale * e.contact), std::max(floor.omega, scale * e.omega),
+             std::max(floor.rotation, scale * e.rotation)};
+  }
+  return floor;
+}
+
 struct Convergence {
   std::vector<double> h, contact, omega, rotation;
   double final_defect = 0.0;  // ||R^T R - I||_F at the end of the finest run
@@ -65,10 +94,7 @@ inline Convergence measure_convergence(const Integrator& method, const Problem& 
   Convergence c;
   constexpr double kNotFitted = std::numeric_limits<double>::quiet_NaN();
   for (double h = ladder.h0; h >= ladder.h_min; h /= ladder.ratio) {
-    RunOptions options;
-    options.t_end = t_end;
-    options.h = h;
-    const RunResult run = method.integrate(problem, options);
+    const RunResult run = run_at(method, problem, t_end, h);
     if (run.status != Status::ok) continue;
     const EndErrors e = end_errors(problem, run.final_state, ref);
     c.final_defect = rotation_defect(rotation_of(run.final_state));
