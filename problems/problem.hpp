@@ -81,6 +81,14 @@ class Problem {
 
   // Cheap check for every step: the state is finite and inside the domain.
   Validity check_step(const FlatState& y) const;
+  // A test the drivers run at every step before check_step, inlined and
+  // branch-free: true means check_step says ok. The sum of the entries is
+  // finite when all are (NaN and infinities carry through it); a false
+  // alarm (the sum of finite entries overflowing) costs a call of
+  // check_step, which then clears the state.
+  bool surely_within_step(const FlatState& y) const {
+    return (std::abs(y.sum()) < kHuge) & domain_.contains(y[kOffsetAlpha], y[kOffsetAlpha + 1]);
+  }
   // The model's own limits from the margins of an evaluation: lift-off
   // (F . N <= 0), curvature (r max kappa >= 1 or E singular), a non-finite
   // landscape.

@@ -12,7 +12,8 @@ Vec3 dexp(const Vec3& u, const Vec3& x) {
 }
 
 TEST(SO3, ExpMatchesAngleAxisOnBothSidesOfTheSeriesSwitch) {
-  for (double t : {1e-9, 1e-4, 9.99e-4, 1.001e-3, 0.1, 1.0, 3.0}) {
+  // the series switch is at t = 0.1
+  for (double t : {1e-9, 1e-4, 1e-3, 0.0999, 0.1, 0.1001, 1.0, 3.0}) {
     const Vec3 axis = Vec3(1, -2, 0.5).normalized();
     const Mat3 expected = Eigen::AngleAxisd(t, axis).toRotationMatrix();
     EXPECT_LT((so3_exp(t * axis) - expected).norm(), 2e-16 * 8) << t;
@@ -33,13 +34,25 @@ TEST(SO3, DexpinvInvertsDexp) {
   }
 }
 
+// dexpinv's coefficient (1 - x cot x) / t^2, x = t / 2, in long double and
+// without the closed form's cancellation: 1 - x cot x = (sin x - x cos x) /
+// sin x, and sin x - x cos x = sum_k>=1 (-1)^(k+1) 2k x^(2k+1) / (2k+1)!
+long double exact_dexpinv_coefficient(long double t) {
+  const long double x = 0.5L * t;
+  long double term = x, sum = 0.0L;  // term = x^(2k+1) / (2k+1)!
+  for (int k = 1; k <= 40; ++k) {
+    term *= x * x / ((2.0L * k) * (2.0L * k + 1.0L));
+    sum += (k % 2 == 1 ? 2.0L : -2.0L) * k * term;
+  }
+  return sum / std::sin(x) / (t * t);
+}
+
 TEST(SO3, DexpinvSeriesBranchMatchesTheClosedFormAtTheSwitch) {
-  // |u|^2 = 1e-4 is where the series takes over: both sides agree there
+  // |u|^2 = 1e-2 is where the series takes over: both sides agree there
   const Vec3 w(0.4, 0.2, -0.9);
   const Vec3 dir = Vec3(0.6, -0.8, 0.0);
-  for (double t : {0.01 * (1 - 1e-9), 0.01 * (1 + 1e-9)}) {
-    // the closed form in long double, where its cancellation costs nothing
-    const long double lt = t, c = (1.0L - 0.5L * lt / std::tan(0.5L * lt)) / (lt * lt);
+  for (double t : {0.1 * (1 - 1e-9), 0.1 * (1 + 1e-9)}) {
+    const long double c = exact_dexpinv_coefficient(t);
     const Vec3 u = t * dir;
     const Vec3 expected = w - 0.5 * u.cross(w) + static_cast<double>(c) * u.cross(u.cross(w));
     EXPECT_LT((dexpinv(u, w) - expected).norm(), 1e-16) << t;
@@ -47,6 +60,21 @@ TEST(SO3, DexpinvSeriesBranchMatchesTheClosedFormAtTheSwitch) {
   // and at tiny angles dexpinv is w - u x w / 2 + u x (u x w) / 12 to rounding
   const Vec3 u = 1e-6 * dir;
   EXPECT_LT((dexpinv(u, w) - (w - 0.5 * u.cross(w) + u.cross(u.cross(w)) / 12.0)).norm(), 1e-17);
+}
+
+TEST(SO3, DexpinvCoefficientIsExactToRoundingOnBothBranches) {
+  // the series below t = 0.1, the closed form above: within 2 ulp of the
+  // long-double value everywhere up to the pole guard, NaN from there on
+  for (double t = 1e-4; t < kDexpinvMaxAngle; t *= 1.1) {
+    const double c = dexpinv_coefficient(t * t);
+    const double exact = static_cast<double>(exact_dexpinv_coefficient(t));
+    // the closed form's cancellation costs up to ~12 eps / t^2 relative
+    const double allowed = t < 0.1 ? 4.5e-16 : 4.5e-16 + 4e-15 / (t * t);
+    EXPECT_LT(std::abs(c - exact), allowed * exact) << t;
+  }
+  EXPECT_TRUE(std::isnan(dexpinv_coefficient(kDexpinvMaxAngle * kDexpinvMaxAngle)));
+  EXPECT_TRUE(std::isnan(dexpinv_coefficient(std::numeric_limits<double>::quiet_NaN())));
+  EXPECT_DOUBLE_EQ(dexpinv_coefficient(0.0), 1.0 / 12.0);
 }
 
 TEST(SO3, TruncatedSeriesAgreesToFourthOrderAndSeminarDoesNot) {
