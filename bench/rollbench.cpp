@@ -9,12 +9,14 @@
 #include <optional>
 #include <sstream>
 
+#include "bench/lib/drift.hpp"
 #include "bench/lib/report.hpp"
 #include "bench/lib/score.hpp"
 #include "bench/lib/stepper_option.hpp"
 #include "bench/lib/tableau_option.hpp"
 #include "bench/lib/trajectory_csv.hpp"
 #include "integrators/controllers/controller.hpp"
+#include "integrators/driver.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
@@ -37,7 +39,7 @@ int run_list() {
 }
 
 struct TrajectoryArgs {
-  std::string scene, integrator, out;
+  std::string scene, integrator, out, controller;
   // NaN: not given, the default applies; anything given is checked
   double h = 0.0, rtol = 0.0, atol = 0.0, dt_out = std::nan(""), t_end = std::nan("");
 };
@@ -57,10 +59,11 @@ int run_trajectory(const TrajectoryArgs& a) {
   options.h = a.h;
   options.rtol = a.rtol;
   options.atol = a.atol;
+  if (!a.controller.empty()) options.controller = rb::filter_controller(a.controller).name;  // refuses unknown names
   if (!integrator.adaptive() && !(a.h > 0.0))
     throw rb::InputError("'" + integrator.name() + "' is a fixed-step method and needs --h > 0", "h");
-  if (integrator.adaptive() && !(a.rtol > 0.0 || a.atol > 0.0))
-    throw rb::InputError("'" + integrator.name() + "' is adaptive and needs --rtol or --atol > 0", "rtol");
+  // the integrators' own check of the tolerances, before a file is written
+  if (integrator.adaptive()) (void)rb::tolerances_of(options);
   // a fixed-step method lands on every output, so outputs closer than h
   // would silently shorten its step: that is refused, not done
   if (!integrator.adaptive() && a.dt_out < a.h)
@@ -76,18 +79,13 @@ int run_trajectory(const TrajectoryArgs& a) {
   if (!out) throw rb::InputError("could not write '" + a.out + "'", "out");
 
   // a summary on standard output: how the run went and what it cost
-  const rb::Derived start = problem.model().derived(problem.y0());
-  double energy_error = 0.0, defect = 0.0;
-  for (const rb::FlatState& y : run.output.y) {
-    const rb::Derived d = problem.model().derived(y);
-    energy_error = std::max(energy_error, std::abs(d.energy - start.energy));
-    defect = std::max(defect, d.rotation_defect);
-  }
+  const rb::Drift drift = rb::largest_drift(problem, run.output);
   std::printf("%s on %s: %s at t = %.6g (%zu rows in %s)\n", integrator.name().c_str(), scene.name.c_str(),
               std::string(rb::status_name(run.status)).c_str(), run.stop_time, run.output.t.size() + 1,
               a.out.c_str());
-  std::printf("  steps %ld, rejected %ld, rhs evals %ld\n", run.cost.steps, run.cost.rejected, run.cost.rhs_evals);
-  std::printf("  max |energy error| %.3e, max rotation defect %.3e\n", energy_error, defect);
+  std::printf("  steps %ld, rejected %ld, rhs evals %ld, controller %s\n", run.cost.steps, run.cost.rejected,
+              run.cost.rhs_evals, rb::controller_of(integrator.controller(), options).c_str());
+  std::printf("  max |energy error| %.3e, max rotation defect %.3e\n", drift.energy, drift.rotation_defect);
   if (run.status != rb::Status::ok) {
     std::fprintf(stderr, "rollbench: run stopped early at t = %.17g: %s: %s\n", run.stop_time,
                  std::string(rb::status_name(run.status)).c_str(), run.message.c_str());
@@ -283,6 +281,9 @@ int main(int argc, char** argv) {
   list->add_option("--stepper", steppers, stepper_help);
   add_tableau_option(list);
 
+  const char* controller_help =
+      "step-size controller of the adaptive methods that take one: i, pi or pid (default: each method's own)";
+
   TrajectoryArgs traj;
   CLI::App* trajectory = app.add_subcommand("trajectory", "integrate one scene with one method and write a CSV");
   trajectory->add_option("scene", traj.scene, "a shipped scene's name or a scene JSON file")->required();
@@ -292,6 +293,7 @@ int main(int argc, char** argv) {
   trajectory->add_option("--atol", traj.atol, "absolute tolerance of an adaptive method");
   trajectory->add_option("--dt-out", traj.dt_out, "spacing of the output rows, >= h (default: the larger of 0.01 and h)");
   trajectory->add_option("--t-end", traj.t_end, "end time (default: the scene's t_end)");
+  trajectory->add_option("--controller", traj.controller, controller_help);
   trajectory->add_option("--out", traj.out, "the CSV file to write")->required();
   trajectory->add_option("--stepper", steppers, stepper_help);
   add_tableau_option(trajectory);
@@ -310,8 +312,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--integrators", run.integrators, "comma-separated registry names");
   run_cmd->add_option("--h", run.hs, "step sizes, e.g. 0.1,0.05 or 2^-3..2^-8");
   run_cmd->add_option("--tol", run.tols, "tolerances (rtol = atol) of adaptive methods, e.g. 1e-4,1e-8");
-  run_cmd->add_option("--controller", run.controller,
-                      "step-size controller of the adaptive methods that take one: i, pi or pid (default: each method's own)");
+  run_cmd->add_option("--controller", run.controller, controller_help);
   run_cmd->add_option("--dt-out", run.dt_out,
                       "record the state every dt-out in the timed runs and measure error_max there "
                       "(default: the timed runs record t_end only; error_max is measured every 0.25 in untimed runs)");

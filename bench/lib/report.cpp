@@ -105,9 +105,10 @@ namespace {
 json run_json(const RunRecord& r, const std::string& reference_kind) {
   std::vector<double> samples = r.wall_samples;
   const Mat3 R = rotation_of(r.final_state);
-  return {{"index", r.index}, {"scene", r.scene}, {"integrator", r.integrator}, {"family", r.family},
-          {"declared_order", r.declared_order}, {"declared_rotation_order", r.rotation_order},
-          {"adaptive", r.adaptive}, {"needs_jacobian", r.needs_jacobian}, {"controller", r.controller},
+  const MethodInfo& m = r.method;
+  return {{"index", r.index}, {"scene", r.scene}, {"integrator", m.name}, {"family", m.family},
+          {"declared_order", m.declared_order}, {"declared_rotation_order", m.rotation_order},
+          {"adaptive", m.adaptive}, {"needs_jacobian", m.needs_jacobian}, {"controller", r.controller},
           {"h", number(r.h)}, {"rtol", number(r.rtol)}, {"atol", number(r.atol)},
           {"status", std::string(status_name(r.status))}, {"message", r.message}, {"stop_time", r.stop_time},
           {"steps", r.cost.steps}, {"rejected", r.cost.rejected}, {"rhs_evals", r.cost.rhs_evals},
@@ -148,7 +149,7 @@ json timed_call(const SweepSpec& spec) {
 json stability_json(const StabilityResults& s) {
   json drift = json::array(), stable = json::array();
   for (const DriftRecord& d : s.drift)
-    drift.push_back({{"index", d.index}, {"scene", d.scene}, {"integrator", d.integrator}, {"family", d.family},
+    drift.push_back({{"index", d.index}, {"scene", d.scene}, {"integrator", d.method.name}, {"family", d.method.family},
                      {"h", d.h}, {"status", std::string(status_name(d.status))}, {"message", d.message},
                      {"stop_time", d.stop_time}, {"t", d.t}, {"energy_error", d.energy_error},
                      {"rotation_defect", d.rotation_defect}, {"steps", d.cost.steps},
@@ -159,7 +160,7 @@ json stability_json(const StabilityResults& s) {
       tried.push_back({{"h", t.h}, {"status", std::string(status_name(t.status))},
                        {"energy_error", number(t.energy_error)}, {"rotation_defect", number(t.rotation_defect)},
                        {"stable", t.stable}});
-    stable.push_back({{"index", r.index}, {"scene", r.scene}, {"integrator", r.integrator}, {"family", r.family},
+    stable.push_back({{"index", r.index}, {"scene", r.scene}, {"integrator", r.method.name}, {"family", r.method.family},
                       {"h", number(r.h)}, {"at_limit", r.at_limit}, {"rotation_defect", number(r.rotation_defect)},
                       {"energy_scale", r.energy_scale}, {"thresholds", {{"energy", r.energy_fraction}}},
                       {"tried", tried}});

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "bench/lib/drift.hpp"
 #include "integrators/registry.hpp"
 #include "problems/so3.hpp"
 
@@ -27,8 +28,7 @@ std::vector<double> log_spaced(double from, double to, int count) {
 DriftRecord drift_run(const Problem& problem, const Integrator& m, const StabilitySpec& st) {
   DriftRecord d;
   d.scene = problem.name();
-  d.integrator = m.name();
-  d.family = m.family();
+  d.method = m.info();
   d.h = st.drift_h;
   RunOptions o;
   o.t_end = st.drift_t_end;
@@ -48,11 +48,11 @@ DriftRecord drift_run(const Problem& problem, const Integrator& m, const Stabili
   d.message = run.message;
   d.stop_time = run.stop_time;
   d.cost = run.cost;
-  const double e0 = problem.model().derived(problem.y0()).energy;
+  const DriftMeter meter(problem);
   for (std::size_t i = 0; i < run.output.t.size(); ++i) {
-    const Derived x = problem.model().derived(run.output.y[i]);
+    const Drift x = meter.at(run.output.y[i]);
     d.t.push_back(run.output.t[i]);
-    d.energy_error.push_back(std::abs(x.energy - e0));
+    d.energy_error.push_back(x.energy);
     d.rotation_defect.push_back(x.rotation_defect);
   }
   return d;
@@ -70,17 +70,16 @@ double energy_scale_of(const Problem& problem) {
 StableStepRecord stable_step_search(const SweepScene& s, const Integrator& m, const StabilitySpec& st) {
   StableStepRecord r;
   r.scene = s.scene.name;
-  r.integrator = m.name();
-  r.family = m.family();
+  r.method = m.info();
   r.energy_scale = energy_scale_of(s.problem);
   r.energy_fraction = st.energy_fraction;
-  const double e0 = s.problem.model().derived(s.problem.y0()).energy;
+  const DriftMeter meter(s.problem);
   // upward from the smallest step, so that every h below the answer is tried
   for (double h = st.search_h_min; h <= st.search_h_max * (1 + 1e-12); h *= 2) {
     const RunRecord run = run_task(s, SweepTask{0, 0, m.name(), h, kNaN, {}}, 5'000'000);
     StableStepTry t{h, run.status, kNaN, run.rotation_drift, false};
     if (run.status == Status::ok)
-      t.energy_error = std::max(run.energy_drift, std::abs(run.final_energy - e0)) / r.energy_scale;
+      t.energy_error = std::max(run.energy_drift, meter.at(run.final_state).energy) / r.energy_scale;
     t.stable = run.status == Status::ok && t.energy_error <= st.energy_fraction;
     r.tried.push_back(t);
     if (!t.stable) break;

@@ -15,7 +15,8 @@ namespace rb {
 
 struct DriftRecord {
   std::size_t index = 0;  // position in the full (unsharded) list
-  std::string scene, integrator, family;
+  std::string scene;
+  MethodInfo method;
   double h = 0.0;
   Status status = Status::ok;
   std::string message;
@@ -37,7 +38,8 @@ struct StableStepTry {
 // run at a smaller h of the ladder were stable.
 struct StableStepRecord {
   std::size_t index = 0;
-  std::string scene, integrator, family;
+  std::string scene;
+  MethodInfo method;
   double h = kNaN;  // NaN when even h_min was not stable
   double energy_scale = 0.0;     // m g0 r + the starting kinetic energy
   double energy_fraction = 0.0;  // the bound on energy_error

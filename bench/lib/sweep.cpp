@@ -8,6 +8,8 @@
 #include <sstream>
 #include <thread>
 
+#include "bench/lib/drift.hpp"
+#include "bench/lib/trajectory_csv.hpp"
 #include "integrators/driver.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
@@ -125,15 +127,9 @@ void measure_end(const SweepScene& s, const RunResult& run, RunRecord& r) {
 // recorded it (every output time is one of the grid's, which the reference
 // has). A run that stopped early keeps its drift, not its errors.
 void measure_grid(const SweepScene& s, const RunResult& run, RunRecord& r) {
-  const RollingBall& model = s.problem.model();
-  const double e0 = model.derived(s.problem.y0()).energy;
-  r.energy_drift = 0.0;
-  r.rotation_drift = rotation_defect(rotation_of(s.problem.y0()));
-  for (const FlatState& y : run.output.y) {
-    const Derived d = model.derived(y);
-    r.energy_drift = std::max(r.energy_drift, std::abs(d.energy - e0));
-    r.rotation_drift = std::max(r.rotation_drift, d.rotation_defect);
-  }
+  const Drift drift = largest_drift(s.problem, run.output);
+  r.energy_drift = drift.energy;
+  r.rotation_drift = drift.rotation_defect;
   r.error_max.floor = s.reference.error;
   if (!reached_end(s, run)) return;
   PointErrors largest{{0, 0, 0, 0}, 0.0};
@@ -149,17 +145,6 @@ void measure_grid(const SweepScene& s, const RunResult& run, RunRecord& r) {
 }
 
 namespace {
-
-// The method's facts a record carries.
-void describe_method(RunRecord& r, const MethodInfo& info) {
-  r.integrator = info.name;
-  r.family = info.family;
-  r.declared_order = info.declared_order;
-  r.rotation_order = info.rotation_order;
-  r.adaptive = info.adaptive;
-  r.needs_jacobian = info.needs_jacobian;
-  r.controller = info.controller;
-}
 
 RunResult integrate_safely(const Integrator& m, const Problem& problem, const RunOptions& o) {
   try {
@@ -207,9 +192,7 @@ std::vector<SweepScene> prepare_scenes(const SweepSpec& spec, bool with_referenc
     if (spec.t_end > 0.0) scene.t_end = std::min(scene.t_end, spec.t_end);
     Problem problem = make_problem(scene);
     const double spacing = spec.dt_out > 0.0 ? spec.dt_out : spec.error_dt;
-    std::vector<double> times;
-    for (int k = 1; k * spacing < scene.t_end - 1e-12; ++k) times.push_back(k * spacing);
-    times.push_back(scene.t_end);
+    std::vector<double> times = equally_spaced_outputs(spacing, scene.t_end);
     const std::vector<double> timed = spec.dt_out > 0.0 ? times : std::vector<double>{scene.t_end};
     std::ostringstream content;
     content.precision(17);
@@ -264,11 +247,11 @@ RunRecord run_task(const SweepScene& s, const SweepTask& task, long max_steps) {
   RunRecord r;
   r.index = task.index;
   r.scene = s.scene.name;
-  describe_method(r, m.info());
+  r.method = m.info();
   r.h = task.h;
   r.rtol = r.atol = task.tol;
   const RunOptions timed = timed_options(s, task, max_steps);
-  r.controller = controller_of(r.controller, timed);
+  r.controller = controller_of(m.controller(), timed);
   const RunResult run = integrate_safely(m, s.problem, timed);
   r.status = run.status;
   r.message = run.message;

@@ -10,6 +10,7 @@
 
 #include "bench/lib/presets.hpp"
 #include "bench/lib/reference.hpp"
+#include "integrators/integrator.hpp"
 #include "problems/scene.hpp"
 
 namespace rb {
@@ -49,10 +50,9 @@ struct ErrorMaxSource {
 
 struct RunRecord {
   std::size_t index = 0;  // position in the full (unsharded) sweep
-  std::string scene, integrator, family;
-  int declared_order = 0, rotation_order = 0;
-  bool adaptive = false, needs_jacobian = false;
-  std::string controller;  // the step-size controller the run used
+  std::string scene;
+  MethodInfo method;       // the integrator's facts
+  std::string controller;  // the step-size controller the run used (method.controller unless the sweep chose one)
   double h = kNaN, rtol = kNaN, atol = kNaN;
   Status status = Status::ok;
   std::string message;

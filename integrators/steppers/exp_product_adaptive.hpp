@@ -26,12 +26,6 @@ class ExpProductAdaptive final : public Integrator {
   // Throws std::invalid_argument for a scheme without an embedded update
   // or a malformed one.
   explicit ExpProductAdaptive(ExpProductScheme scheme);
-  std::string name() const override { return scheme_.name; }
-  std::string family() const override { return scheme_.family; }
-  int declared_order() const override { return scheme_.order; }
-  bool adaptive() const override { return true; }
-  std::string controller() const override { return "pi"; }
-  std::string description() const override;
   RunResult integrate(const Problem& problem, const RunOptions& options) const override;
 
   const ExpProductScheme& scheme() const { return scheme_; }

@@ -87,10 +87,21 @@ class FlatPairStepper {
   bool have_first_ = false;
 };
 
+MethodInfo facts_of(const EmbeddedPair& p, std::string name) {
+  return {.name = std::move(name),
+          .family = "rk-adaptive",
+          .declared_order = p.order,
+          .adaptive = true,
+          .controller = "pi",
+          .description = "adaptive explicit RK on the " + p.name + " pair (order " + std::to_string(p.order) + ", " +
+                         std::to_string(p.stages) + " stages" + (p.fsal < p.stages ? ", FSAL" : "") +
+                         ", PI controller by default) on the flat view; steps clamped onto the outputs"};
+}
+
 }  // namespace
 
 RungeKuttaAdaptive::RungeKuttaAdaptive(EmbeddedPair pair, std::string name)
-    : pair_(std::move(pair)), name_(std::move(name)) {
+    : Integrator(facts_of(pair, std::move(name))), pair_(std::move(pair)) {
   const EmbeddedPair& p = pair_;
   const auto n = static_cast<std::size_t>(p.total);
   // the stage loop runs over the attempt's stages only: no dense-output stages
@@ -99,13 +110,6 @@ RungeKuttaAdaptive::RungeKuttaAdaptive(EmbeddedPair pair, std::string name)
                     p.b.size() == n && p.e.size() == n && p.e3.empty();
   if (!fits) throw InputError("embedded pair '" + p.name + "' has inconsistent sizes for a flat adaptive method", "pair");
   (void)p.tableau(p.name);  // b against its order conditions
-}
-
-std::string RungeKuttaAdaptive::description() const {
-  const EmbeddedPair& p = pair_;
-  return "adaptive explicit RK on the " + p.name + " pair (order " + std::to_string(p.order) + ", " +
-         std::to_string(p.stages) + " stages" + (p.fsal < p.stages ? ", FSAL" : "") +
-         ", PI controller by default) on the flat view; steps clamped onto the outputs";
 }
 
 RunResult RungeKuttaAdaptive::integrate(const Problem& problem, const RunOptions& options) const {

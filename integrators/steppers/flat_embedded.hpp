@@ -22,19 +22,12 @@ class RungeKuttaAdaptive final : public Integrator {
   // Throws InputError for a pair whose sizes do not fit or whose b fails the
   // order conditions of its order.
   RungeKuttaAdaptive(EmbeddedPair pair, std::string name);
-  std::string name() const override { return name_; }
-  std::string family() const override { return "rk-adaptive"; }
-  int declared_order() const override { return pair_.order; }
-  bool adaptive() const override { return true; }
-  std::string controller() const override { return "pi"; }
-  std::string description() const override;
   RunResult integrate(const Problem& problem, const RunOptions& options) const override;
 
   const EmbeddedPair& pair() const { return pair_; }
 
  private:
   EmbeddedPair pair_;
-  std::string name_;
 };
 
 }  // namespace rb

@@ -216,10 +216,33 @@ class LieStepper {
   std::vector<FlatState> dense_y_;
 };
 
+// use_dense: whether outputs come from the pair's dense output
+MethodInfo facts_of(const EmbeddedPair& p, std::string name, bool use_dense) {
+  const int per_attempt = p.stages - 1 + (p.fsal < p.stages ? 0 : 1);
+  std::string text = "adaptive Runge-Kutta-Munthe-Kaas on the " + p.name + " pair (order " +
+                     std::to_string(p.order) + ", error estimate on (u, z), PI controller): " +
+                     std::to_string(per_attempt) + " rhs and " + std::to_string(p.stages - 1) +
+                     " dexpinv a step, one exp";
+  if (use_dense)
+    text += "; outputs by its order-" + std::to_string(p.dense_order) + " dense output through exp" +
+            (p.total > p.fsal + 1 ? " (" + std::to_string(p.total - p.fsal - 1) + " extra rhs a step with outputs)"
+                                  : std::string());
+  else
+    text += "; steps clamped onto the outputs";
+  return {.name = std::move(name),
+          .family = "lie-adaptive",
+          .declared_order = p.order,
+          .adaptive = true,
+          .controller = "pi",
+          .description = std::move(text)};
+}
+
 }  // namespace
 
 MuntheKaasAdaptive::MuntheKaasAdaptive(EmbeddedPair pair, std::string name, bool use_dense)
-    : pair_(std::move(pair)), name_(std::move(name)), use_dense_(use_dense && pair_.dense_order > 0) {
+    : Integrator(facts_of(pair, std::move(name), use_dense && pair.dense_order > 0)),
+      pair_(std::move(pair)),
+      use_dense_(use_dense && pair_.dense_order > 0) {
   // the stage loops index by these sizes: a pair that does not fit is refused
   const EmbeddedPair& p = pair_;
   const auto n = static_cast<std::size_t>(p.total);
@@ -230,22 +253,6 @@ MuntheKaasAdaptive::MuntheKaasAdaptive(EmbeddedPair pair, std::string name, bool
   if (!fits) throw InputError("embedded pair '" + p.name + "' has inconsistent sizes", "pair");
   // the propagating weights against the order conditions (to 4)
   (void)p.tableau(p.name);
-}
-
-std::string MuntheKaasAdaptive::description() const {
-  const EmbeddedPair& p = pair_;
-  const int per_attempt = p.stages - 1 + (p.fsal < p.stages ? 0 : 1);
-  std::string text = "adaptive Runge-Kutta-Munthe-Kaas on the " + p.name + " pair (order " +
-                     std::to_string(p.order) + ", error estimate on (u, z), PI controller): " +
-                     std::to_string(per_attempt) + " rhs and " + std::to_string(p.stages - 1) +
-                     " dexpinv a step, one exp";
-  if (use_dense_)
-    text += "; outputs by its order-" + std::to_string(p.dense_order) + " dense output through exp" +
-            (p.total > p.fsal + 1 ? " (" + std::to_string(p.total - p.fsal - 1) + " extra rhs a step with outputs)"
-                                  : std::string());
-  else
-    text += "; steps clamped onto the outputs";
-  return text;
 }
 
 RunResult MuntheKaasAdaptive::integrate(const Problem& problem, const RunOptions& options) const {

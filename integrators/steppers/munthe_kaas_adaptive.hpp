@@ -33,19 +33,12 @@ class MuntheKaasAdaptive final : public Integrator {
   // dense output (for tests and comparisons). Throws InputError for a pair
   // whose sizes do not fit or whose b fails the order conditions (to 4).
   MuntheKaasAdaptive(EmbeddedPair pair, std::string name, bool use_dense = true);
-  std::string name() const override { return name_; }
-  std::string family() const override { return "lie-adaptive"; }
-  int declared_order() const override { return pair_.order; }
-  bool adaptive() const override { return true; }
-  std::string controller() const override { return "pi"; }
-  std::string description() const override;
   RunResult integrate(const Problem& problem, const RunOptions& options) const override;
 
   const EmbeddedPair& pair() const { return pair_; }
 
  private:
   EmbeddedPair pair_;
-  std::string name_;
   bool use_dense_;
 };
 

@@ -150,5 +150,33 @@ TEST(Cli, RunControllerIsCheckedAndRecorded) {
   }
 }
 
+// --controller on trajectory, as on run: refused when unknown; the summary
+// names the controller the run used, a filter where the method takes one,
+// and a filter other than the default changes an RKMK pair's steps.
+TEST(Cli, TrajectoryControllerIsCheckedAndRecorded) {
+  const fs::path csv = temp_file("controller.csv");
+  const std::string common = " --rtol 1e-6 --atol 1e-6 --t-end 2 --out " + csv.string();
+  Outcome o = rollbench("trajectory valley-sideways --integrator rkmk-bs32-adaptive --controller p" + common);
+  EXPECT_EQ(o.code, 2);
+  EXPECT_EQ(o.err, "rollbench: 'controller': unknown step-size controller 'p' (known: constant, library, i, pi, pid)\n");
+  // the summary's cost line: "  steps N, rejected M, rhs evals K, controller C"
+  auto cost_line = [&](const std::string& integrator, const std::string& controller) {
+    const Outcome r = rollbench("trajectory valley-sideways --integrator " + integrator +
+                                (controller.empty() ? "" : " --controller " + controller) + common);
+    EXPECT_EQ(r.code, 0) << r.err;
+    for (const std::string& line : lines_of(r.out))
+      if (line.rfind("  steps ", 0) == 0) return line;
+    ADD_FAILURE() << "no cost line in: " << r.out;
+    return std::string();
+  };
+  const std::string pi = cost_line("rkmk-bs32-adaptive", ""), pid = cost_line("rkmk-bs32-adaptive", "pid");
+  EXPECT_EQ(pi.substr(pi.rfind(", controller ")), ", controller pi");
+  EXPECT_EQ(pid.substr(pid.rfind(", controller ")), ", controller pid");
+  EXPECT_NE(pi.substr(0, pi.find(", rejected")), pid.substr(0, pid.find(", rejected")));
+  const std::string library = cost_line("odeint-dopri5-adaptive", ""), kept = cost_line("odeint-dopri5-adaptive", "pid");
+  EXPECT_EQ(kept, library);
+  EXPECT_EQ(kept.substr(kept.rfind(", controller ")), ", controller library");
+}
+
 }  // namespace
 }  // namespace rb

@@ -151,21 +151,21 @@ TEST(Stability, TheLargestStableStepHoldsAtEverySmallerStep) {
   ASSERT_EQ(st.largest_stable_h.size(), 3u);
   for (const StableStepRecord& r : st.largest_stable_h) {
     ASSERT_FALSE(r.tried.empty());
-    EXPECT_DOUBLE_EQ(r.tried.front().h, spec.stability.search_h_min) << r.integrator;
+    EXPECT_DOUBLE_EQ(r.tried.front().h, spec.stability.search_h_min) << r.method.name;
     double largest_stable = kNaN;
     for (std::size_t i = 0; i < r.tried.size(); ++i) {
       const StableStepTry& t = r.tried[i];
       if (i > 0) {
-        EXPECT_DOUBLE_EQ(t.h, 2 * r.tried[i - 1].h) << r.integrator << ": every step of the ladder";
+        EXPECT_DOUBLE_EQ(t.h, 2 * r.tried[i - 1].h) << r.method.name << ": every step of the ladder";
       }
-      EXPECT_EQ(t.stable, t.status == Status::ok && t.energy_error <= r.energy_fraction) << r.integrator;
+      EXPECT_EQ(t.stable, t.status == Status::ok && t.energy_error <= r.energy_fraction) << r.method.name;
       // stable up to the answer, the first unstable one ends the ladder
-      EXPECT_EQ(t.stable, i + 1 < r.tried.size() || r.at_limit) << r.integrator << " at h = " << t.h;
+      EXPECT_EQ(t.stable, i + 1 < r.tried.size() || r.at_limit) << r.method.name << " at h = " << t.h;
       if (t.stable) largest_stable = t.h;
     }
-    EXPECT_EQ(r.h, largest_stable) << r.integrator;
-    ASSERT_TRUE(std::isfinite(r.h)) << r.integrator;
-    EXPECT_FALSE(r.at_limit) << r.integrator << " is unstable somewhere below h = 8";
+    EXPECT_EQ(r.h, largest_stable) << r.method.name;
+    ASSERT_TRUE(std::isfinite(r.h)) << r.method.name;
+    EXPECT_FALSE(r.at_limit) << r.method.name << " is unstable somewhere below h = 8";
   }
   // Euler's energy grows at every step: it is stable only at small steps
   EXPECT_LT(st.largest_stable_h[2].h, st.largest_stable_h[0].h);
@@ -173,7 +173,7 @@ TEST(Stability, TheLargestStableStepHoldsAtEverySmallerStep) {
   // keeps it at rounding wherever it is stable, rk4 does not
   const StableStepRecord& rk4 = st.largest_stable_h[0];
   const StableStepRecord& rkmk4 = st.largest_stable_h[1];
-  EXPECT_EQ(rkmk4.integrator, "rkmk4");
+  EXPECT_EQ(rkmk4.method.name, "rkmk4");
   EXPECT_LT(rkmk4.rotation_defect, 1e-12);
   EXPECT_GT(rk4.rotation_defect, 1e-6);
 }

@@ -196,7 +196,7 @@ TEST(Report, EveryRunGetsItsRepeatsWithinItsBudget) {
     const std::vector<RunRecord> runs = run_sweep(spec, scenes, quiet);
     ASSERT_FALSE(runs.empty());
     for (const RunRecord& r : runs) {
-      EXPECT_EQ(r.wall_samples.size(), want) << r.integrator << ", repeats " << repeats << ", budget " << budget;
+      EXPECT_EQ(r.wall_samples.size(), want) << r.method.name << ", repeats " << repeats << ", budget " << budget;
       for (const double w : r.wall_samples) EXPECT_GT(w, 0.0);
     }
   }

@@ -199,7 +199,7 @@ TEST(FailingSweep, EveryRunIsRecordedAndNoneCrashes) {
   const std::vector<RunRecord> runs = run_sweep(spec, scenes, [](const std::string&) {});
   ASSERT_EQ(runs.size(), tasks);
   for (const RunRecord& r : runs) {
-    SCOPED_TRACE(r.scene + " " + r.integrator + " h=" + std::to_string(r.h) + " tol=" + std::to_string(r.rtol));
+    SCOPED_TRACE(r.scene + " " + r.method.name + " h=" + std::to_string(r.h) + " tol=" + std::to_string(r.rtol));
     EXPECT_NE(r.status, Status::ok);
     EXPECT_FALSE(r.message.empty());
     EXPECT_EQ(r.wall_samples.size(), 1u);

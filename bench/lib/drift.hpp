@@ -1,0 +1,30 @@
+#pragma once
+// The drift of a run, measured one way for the report, the stability study
+// and `rollbench trajectory`: the energy error |H(y) - H(y0)| against the
+// problem's start and the rotation defect ||R^T R - I||_F (MODEL.md,
+// invariants).
+#include "integrators/integrator.hpp"
+
+namespace rb {
+
+struct Drift {
+  double energy = 0.0;           // |H(y) - H(y0)|, in the scene's energy units
+  double rotation_defect = 0.0;  // ||R^T R - I||_F
+};
+
+// The drift of states of one problem against its start.
+class DriftMeter {
+ public:
+  explicit DriftMeter(const Problem& problem);
+  Drift at(const FlatState& y) const;
+
+ private:
+  const RollingBall* model_;
+  double start_energy_;
+};
+
+// The largest of each over the start and every recorded output of a run
+// (a non-finite value does not raise it).
+Drift largest_drift(const Problem& problem, const Trajectory& output);
+
+}  // namespace rb
