@@ -10,30 +10,31 @@
 //   (integrators/controllers/): Gustafsson's PI by default, as for
 //   MuntheKaasAdaptive; RunOptions::controller chooses another.
 // - No dense output: steps are clamped to land on every output time.
-// - FSAL where the pair has it (fsal < stages): the stage at (t + h, y_new)
-//   starts the next step; otherwise F(y_new) is evaluated after acceptance.
+// - FSAL where the tableau's error weights use its FSAL stage: the stage at
+//   (t + h, y_new) starts the next step; otherwise F(y_new) is evaluated
+//   after acceptance.
 #include "integrators/integrator.hpp"
-#include "integrators/tableaus_high_order.hpp"
+#include "integrators/tableau.hpp"
 
 namespace rb {
 
 class RungeKuttaAdaptive final : public Integrator {
  public:
-  // Throws InputError for a pair whose sizes do not fit or whose b fails the
-  // order conditions of its order.
-  RungeKuttaAdaptive(EmbeddedPair pair, std::string name);
+  // Throws InputError for a tableau without embedded weights (or with a
+  // stretched estimate, which only the Lie pairs combine).
+  RungeKuttaAdaptive(Tableau tableau, std::string name);
   std::string name() const override { return name_; }
   std::string family() const override { return "rk-adaptive"; }
-  int declared_order() const override { return pair_.order; }
+  int declared_order() const override { return tableau_.order(); }
   bool adaptive() const override { return true; }
   std::string controller() const override { return "pi"; }
   std::string description() const override;
   RunResult integrate(const Problem& problem, const RunOptions& options) const override;
 
-  const EmbeddedPair& pair() const { return pair_; }
+  const Tableau& tableau() const { return tableau_; }
 
  private:
-  EmbeddedPair pair_;
+  Tableau tableau_;
   std::string name_;
 };
 

@@ -23,28 +23,28 @@
 // applications in each attempt, plus the FSAL stage's rhs where the error
 // estimate does not use it, and one exp; each output adds one exp.
 #include "integrators/integrator.hpp"
-#include "integrators/tableaus_high_order.hpp"
+#include "integrators/tableau.hpp"
 
 namespace rb {
 
 class MuntheKaasAdaptive final : public Integrator {
  public:
-  // use_dense = false clamps steps onto the outputs even where the pair has a
-  // dense output (for tests and comparisons). Throws InputError for a pair
-  // whose sizes do not fit or whose b fails the order conditions (to 4).
-  MuntheKaasAdaptive(EmbeddedPair pair, std::string name, bool use_dense = true);
+  // use_dense = false clamps steps onto the outputs even where the tableau
+  // has a dense output (for tests and comparisons). Throws InputError for a
+  // tableau without embedded weights.
+  MuntheKaasAdaptive(Tableau tableau, std::string name, bool use_dense = true);
   std::string name() const override { return name_; }
   std::string family() const override { return "lie-adaptive"; }
-  int declared_order() const override { return pair_.order; }
+  int declared_order() const override { return tableau_.order(); }
   bool adaptive() const override { return true; }
   std::string controller() const override { return "pi"; }
   std::string description() const override;
   RunResult integrate(const Problem& problem, const RunOptions& options) const override;
 
-  const EmbeddedPair& pair() const { return pair_; }
+  const Tableau& tableau() const { return tableau_; }
 
  private:
-  EmbeddedPair pair_;
+  Tableau tableau_;
   std::string name_;
   bool use_dense_;
 };
