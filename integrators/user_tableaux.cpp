@@ -1,10 +1,8 @@
 #include "integrators/user_tableaux.hpp"
 
-#include "integrators/steppers/flat_embedded.hpp"
-#include "integrators/steppers/munthe_kaas.hpp"
-#include "integrators/steppers/munthe_kaas_adaptive.hpp"
+#include "integrators/controllers/controller.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/steppers/runge_kutta.hpp"
+#include "integrators/steppers/tableau_methods.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {
@@ -15,11 +13,11 @@ std::vector<std::unique_ptr<Integrator>> integrators_of(const TableauFile& file)
   // at fixed steps only the stages b weights are evaluated (a pair's FSAL
   // stage is not); the adaptive variants use the embedded weights
   std::vector<std::unique_ptr<Integrator>> made;
-  made.push_back(std::make_unique<RungeKutta>(t, "rk-" + name));
-  made.push_back(std::make_unique<MuntheKaas>(t, "rkmk-" + name));
+  made.push_back(rk_method(t, "rk-" + name, kConstantController));
+  made.push_back(rkmk_method(t, "rkmk-" + name, kConstantController));
   if (t.has_error_estimate()) {
-    made.push_back(std::make_unique<RungeKuttaAdaptive>(t, "rk-" + name + "-adaptive"));
-    made.push_back(std::make_unique<MuntheKaasAdaptive>(t, "rkmk-" + name + "-adaptive"));
+    made.push_back(rk_method(t, "rk-" + name + "-adaptive", "pi"));
+    made.push_back(rkmk_method(t, "rkmk-" + name + "-adaptive", "pi"));
   }
   return made;
 }

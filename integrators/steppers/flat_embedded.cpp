@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "integrators/adaptive.hpp"
+#include "integrators/steppers/adaptive_method.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {
@@ -93,28 +93,29 @@ class FlatPairStepper {
 
 }  // namespace
 
-RungeKuttaAdaptive::RungeKuttaAdaptive(Tableau tableau, std::string name)
-    : tableau_(std::move(tableau)), name_(std::move(name)) {
-  const Tableau& t = tableau_;
+std::unique_ptr<Integrator> rk_adaptive(Tableau tableau, std::string name, const std::string& controller) {
+  (void)filter_controller(controller);  // throws for an unknown one
+  const Tableau& t = tableau;
   if (!t.has_error_estimate())
     throw InputError("tableau '" + t.name() + "' has no embedded weights for an adaptive method", "e");
   // the flat error norm is the plain one
   if (!t.e_stretched().empty())
     throw InputError("tableau '" + t.name() + "' has a stretched error estimate, which the flat pair does not combine",
                      "e_stretched");
-}
-
-std::string RungeKuttaAdaptive::description() const {
-  const Tableau& t = tableau_;
   const bool fsal = t.fsal_stage() && *t.fsal_stage() < t.attempt_stages();
-  return "adaptive explicit RK on the " + t.name() + " pair (order " + std::to_string(t.order()) + ", " +
-         std::to_string(t.attempt_stages()) + " stages" + (fsal ? ", FSAL" : "") +
-         ", PI controller by default) on the flat view; steps clamped onto the outputs";
-}
-
-RunResult RungeKuttaAdaptive::integrate(const Problem& problem, const RunOptions& options) const {
-  FlatPairStepper stepper(problem, tableau_, tolerances_of(options));
-  return drive_adaptive(problem, options, tableau_.order(), stepper, controller_of(controller(), options));
+  MethodInfo info{.name = std::move(name),
+                  .family = "rk-adaptive",
+                  .declared_order = t.order(),
+                  .controller = controller,
+                  .description = "adaptive explicit RK on the " + t.name() + " pair (order " +
+                                 std::to_string(t.order()) + ", " + std::to_string(t.attempt_stages()) + " stages" +
+                                 (fsal ? ", FSAL" : "") + ", " + controller_title(controller) +
+                                 " controller by default) on the flat view; steps clamped onto the outputs"};
+  return adaptive_method(std::move(info), [tableau = std::move(tableau)](const Problem& problem, const RunOptions&,
+                                                                         const Tolerances& tol, auto&& drive) {
+    FlatPairStepper stepper(problem, tableau, tol);
+    return drive(stepper);
+  });
 }
 
 }  // namespace rb

@@ -13,29 +13,18 @@
 // - FSAL where the tableau's error weights use its FSAL stage: the stage at
 //   (t + h, y_new) starts the next step; otherwise F(y_new) is evaluated
 //   after acceptance.
+#include <memory>
+#include <string>
+
 #include "integrators/integrator.hpp"
 #include "integrators/tableau.hpp"
 
 namespace rb {
 
-class RungeKuttaAdaptive final : public Integrator {
- public:
-  // Throws InputError for a tableau without embedded weights (or with a
-  // stretched estimate, which only the Lie pairs combine).
-  RungeKuttaAdaptive(Tableau tableau, std::string name);
-  std::string name() const override { return name_; }
-  std::string family() const override { return "rk-adaptive"; }
-  int declared_order() const override { return tableau_.order(); }
-  bool adaptive() const override { return true; }
-  std::string controller() const override { return "pi"; }
-  std::string description() const override;
-  RunResult integrate(const Problem& problem, const RunOptions& options) const override;
-
-  const Tableau& tableau() const { return tableau_; }
-
- private:
-  Tableau tableau_;
-  std::string name_;
-};
+// Explicit RK on the tableau's embedded pair with a controller (a filter:
+// integrators/controllers/), family "rk-adaptive". Throws InputError for a
+// tableau without embedded weights (or with a stretched estimate, which only
+// the Lie pairs combine) or an unknown controller.
+std::unique_ptr<Integrator> rk_adaptive(Tableau tableau, std::string name, const std::string& controller = "pi");
 
 }  // namespace rb

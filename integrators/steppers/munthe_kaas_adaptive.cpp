@@ -7,7 +7,7 @@
 #include <limits>
 #include <vector>
 
-#include "integrators/adaptive.hpp"
+#include "integrators/steppers/adaptive_method.hpp"
 #include "problems/input_error.hpp"
 #include "problems/so3.hpp"
 
@@ -228,23 +228,18 @@ class LieStepper {
 
 }  // namespace
 
-MuntheKaasAdaptive::MuntheKaasAdaptive(Tableau tableau, std::string name, bool use_dense)
-    : tableau_(std::move(tableau)), name_(std::move(name)), use_dense_(use_dense && tableau_.dense_order() > 0) {
-  if (!tableau_.has_error_estimate())
-    throw InputError("tableau '" + tableau_.name() + "' has no embedded weights for an adaptive method", "e");
-}
+namespace {
 
-std::string MuntheKaasAdaptive::description() const {
-  const Tableau& p = tableau_;
+std::string description_of(const Tableau& p, const std::string& controller, bool use_dense) {
   const bool fsal_in_attempt = p.fsal_stage() && *p.fsal_stage() < p.attempt_stages();
   const int per_attempt = p.attempt_stages() - 1 + (fsal_in_attempt ? 0 : 1);
   // the stages past the attempt's, less the FSAL one (evaluated for the next step)
   const int extra = p.total_stages() - p.attempt_stages() - (p.fsal_stage() && !fsal_in_attempt ? 1 : 0);
   std::string text = "adaptive Runge-Kutta-Munthe-Kaas on the " + p.name() + " pair (order " +
-                     std::to_string(p.order()) + ", error estimate on (u, z), PI controller): " +
+                     std::to_string(p.order()) + ", error estimate on (u, z), " + controller_title(controller) + " controller): " +
                      std::to_string(per_attempt) + " rhs and " + std::to_string(p.attempt_stages() - 1) +
                      " dexpinv a step, one exp";
-  if (use_dense_)
+  if (use_dense)
     text += "; outputs by its order-" + std::to_string(p.dense_order()) + " dense output through exp" +
             (extra > 0 ? " (" + std::to_string(extra) + " extra rhs a step with outputs)" : std::string());
   else
@@ -252,16 +247,31 @@ std::string MuntheKaasAdaptive::description() const {
   return text;
 }
 
-RunResult MuntheKaasAdaptive::integrate(const Problem& problem, const RunOptions& options) const {
-  const Tolerances tol = tolerances_of(options);
-  const std::vector<double> outputs = output_times_of(problem, options);
-  const std::string controller = controller_of(this->controller(), options);
-  if (use_dense_) {
-    LieStepper<true> stepper(problem, tableau_, tol, outputs);
-    return drive_adaptive(problem, options, tableau_.order(), stepper, controller);
-  }
-  LieStepper<false> stepper(problem, tableau_, tol, outputs);
-  return drive_adaptive(problem, options, tableau_.order(), stepper, controller);
+}  // namespace
+
+std::unique_ptr<Integrator> rkmk_adaptive(Tableau tableau, std::string name, const std::string& controller,
+                                          bool use_dense) {
+  (void)filter_controller(controller);  // throws for an unknown one
+  if (!tableau.has_error_estimate())
+    throw InputError("tableau '" + tableau.name() + "' has no embedded weights for an adaptive method", "e");
+  use_dense = use_dense && tableau.dense_order() > 0;
+  MethodInfo info{.name = std::move(name),
+                  .family = "lie-adaptive",
+                  .declared_order = tableau.order(),
+                  .controller = controller,
+                  .description = description_of(tableau, controller, use_dense)};
+  return adaptive_method(std::move(info), [tableau = std::move(tableau), use_dense](const Problem& problem,
+                                                                                      const RunOptions& options,
+                                                                                      const Tolerances& tol,
+                                                                                      auto&& drive) {
+    const std::vector<double> outputs = output_times_of(problem, options);
+    if (use_dense) {
+      LieStepper<true> stepper(problem, tableau, tol, outputs);
+      return drive(stepper);
+    }
+    LieStepper<false> stepper(problem, tableau, tol, outputs);
+    return drive(stepper);
+  });
 }
 
 }  // namespace rb

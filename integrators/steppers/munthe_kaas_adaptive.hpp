@@ -22,31 +22,20 @@
 // Cost per accepted step: (stages - 1) rhs evaluations and dexpinv
 // applications in each attempt, plus the FSAL stage's rhs where the error
 // estimate does not use it, and one exp; each output adds one exp.
+#include <memory>
+#include <string>
+
 #include "integrators/integrator.hpp"
 #include "integrators/tableau.hpp"
 
 namespace rb {
 
-class MuntheKaasAdaptive final : public Integrator {
- public:
-  // use_dense = false clamps steps onto the outputs even where the tableau
-  // has a dense output (for tests and comparisons). Throws InputError for a
-  // tableau without embedded weights.
-  MuntheKaasAdaptive(Tableau tableau, std::string name, bool use_dense = true);
-  std::string name() const override { return name_; }
-  std::string family() const override { return "lie-adaptive"; }
-  int declared_order() const override { return tableau_.order(); }
-  bool adaptive() const override { return true; }
-  std::string controller() const override { return "pi"; }
-  std::string description() const override;
-  RunResult integrate(const Problem& problem, const RunOptions& options) const override;
-
-  const Tableau& tableau() const { return tableau_; }
-
- private:
-  Tableau tableau_;
-  std::string name_;
-  bool use_dense_;
-};
+// RKMK on the tableau's embedded pair with a controller (a filter:
+// integrators/controllers/), family "lie-adaptive". use_dense = false clamps
+// steps onto the outputs even where the tableau has a dense output (for
+// tests and comparisons). Throws InputError for a tableau without embedded
+// weights or an unknown controller.
+std::unique_ptr<Integrator> rkmk_adaptive(Tableau tableau, std::string name, const std::string& controller = "pi",
+                                          bool use_dense = true);
 
 }  // namespace rb
