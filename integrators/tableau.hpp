@@ -58,6 +58,8 @@ class Tableau {
   const std::string& name() const { return k_.name; }
   int order() const { return k_.order; }
   const std::string& source() const { return k_.source; }
+  // All of it, as given (to build a variant of a shipped tableau).
+  const TableauCoefficients& coefficients() const { return k_; }
 
   // The stages b weights (up to its last non-zero weight).
   int stages() const { return stages_; }

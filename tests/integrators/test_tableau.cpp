@@ -72,13 +72,9 @@ TEST(Tableau, StageGroupsAndFsalAreDerivedFromTheCoefficients) {
 }
 
 TEST(Tableau, EmbeddedWeightsAreCheckedToTheirOrder) {
-  TableauCoefficients k;
+  // Bogacki-Shampine's e is b_hat - b, as its source gives it; b_hat has order 2, not 3
+  TableauCoefficients k = methods::bogacki_shampine32().coefficients();
   k.name = "bs";
-  k.order = 3;
-  k.a = {0, 0, 0, 0, 0.5, 0, 0, 0, 0, 0.75, 0, 0, 2.0 / 9, 1.0 / 3, 4.0 / 9, 0};
-  k.b = {2.0 / 9, 1.0 / 3, 4.0 / 9, 0};
-  k.c = {0, 0.5, 0.75, 1};
-  k.e = {5.0 / 72, -1.0 / 12, -1.0 / 9, 1.0 / 8};  // b_hat - b, as the source gives it
   k.embedded_order = 3;
   EXPECT_EQ(error_of([&] { Tableau{k}; }),
             "'e': the embedded weights b - e of tableau 'bs' declare order 3 but satisfy the order conditions "
