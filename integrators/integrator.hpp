@@ -1,10 +1,12 @@
 #pragma once
-// What every integrator offers (DESIGN.md): a name, a family, a declared
-// order, whether it adapts its step, and integrate(problem, options) -> run.
+// What every integrator offers (DESIGN.md): its facts (MethodInfo: a name,
+// a family, a declared order, whether it adapts its step, ...), given once
+// at construction, and integrate(problem, options) -> run.
 //
 // Integrators are immutable and stateless between runs, so one instance may
 // run on many threads at once; all run state lives in integrate().
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "problems/problem.hpp"
@@ -29,15 +31,17 @@ struct RunOptions {
 
 // The facts of a method, in one place: what `rollbench list` shows, what the
 // runner needs and what the report records of every run.
+// Every member has a default, so that designated initializers may leave
+// any out.
 struct MethodInfo {
-  std::string name;         // registry name, e.g. "rkmk4"
-  std::string family;       // "rk", "rkmk", "odeint", "gsl", ...
+  std::string name{};         // registry name, e.g. "rkmk4"
+  std::string family{};       // "rk", "rkmk", "odeint", "gsl", ...
   int declared_order = 0;
-  int rotation_order = 0;   // the order in R (the declared order unless known lower)
+  int rotation_order = 0;     // the order in R; 0 at construction: the declared order
   bool adaptive = false;
   bool needs_jacobian = false;
-  std::string controller;   // the default step-size controller: "constant", "library", "pi", ...
-  std::string description;  // one line for `rollbench list`
+  std::string controller{};   // the default step-size controller: "constant", "library", "pi", ...
+  std::string description{};  // one line for `rollbench list`
 };
 
 // Cost of a run, counted the same way by every integrator.
@@ -84,30 +88,37 @@ struct RunResult {
 
 class Integrator {
  public:
+  // The facts are fixed for the integrator's life. A rotation_order of 0
+  // takes the declared order; an empty controller takes "library" for an
+  // adaptive method and "constant" for a fixed-step one.
+  explicit Integrator(MethodInfo info) : info_(std::move(info)) {
+    if (info_.rotation_order == 0) info_.rotation_order = info_.declared_order;
+    if (info_.controller.empty()) info_.controller = info_.adaptive ? "library" : "constant";
+  }
   virtual ~Integrator() = default;
-  virtual std::string name() const = 0;         // registry name, e.g. "rkmk4"
-  virtual std::string family() const = 0;      // "rk", "rkmk", "odeint", "gsl", ...
-  virtual int declared_order() const = 0;
+
+  // All the facts as one record; the accessors below read it.
+  const MethodInfo& info() const { return info_; }
+  const std::string& name() const { return info_.name; }      // registry name, e.g. "rkmk4"
+  const std::string& family() const { return info_.family; }  // "rk", "rkmk", "odeint", "gsl", ...
+  int declared_order() const { return info_.declared_order; }
   // The order in R where a method is known to lose order in the rotation
   // only (rkmk4-seminar); the declared order elsewhere.
-  virtual int rotation_order() const { return declared_order(); }
-  virtual bool adaptive() const { return false; }
-  virtual bool needs_jacobian() const { return false; }
-  virtual std::string description() const = 0;  // one line for `rollbench list`
+  int rotation_order() const { return info_.rotation_order; }
+  bool adaptive() const { return info_.adaptive; }
+  bool needs_jacobian() const { return info_.needs_jacobian; }
+  const std::string& description() const { return info_.description; }  // one line for `rollbench list`
   // The default step-size controller (integrators/controllers/): "constant"
   // for a fixed-step method, "library" for a library's own, or a filter.
-  virtual std::string controller() const { return adaptive() ? "library" : "constant"; }
-
-  // All of the above as one record.
-  MethodInfo info() const {
-    return {name(), family(), declared_order(), rotation_order(), adaptive(), needs_jacobian(), controller(),
-            description()};
-  }
+  const std::string& controller() const { return info_.controller; }
 
   // Advance the problem from its start to options.t_end (or the problem's),
   // recording the outputs. Never throws for a failing method: failures are
   // statuses. Throws InputError for options it cannot take (e.g. h <= 0).
   virtual RunResult integrate(const Problem& problem, const RunOptions& options) const = 0;
+
+ private:
+  MethodInfo info_;
 };
 
 }  // namespace rb

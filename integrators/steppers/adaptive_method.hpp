@@ -20,28 +20,21 @@ template <class WithStepper>
 class AdaptiveMethod final : public Integrator {
  public:
   AdaptiveMethod(MethodInfo info, WithStepper with_stepper)
-      : info_(std::move(info)), with_stepper_(std::move(with_stepper)) {
-    info_.adaptive = true;
-    if (info_.rotation_order == 0) info_.rotation_order = info_.declared_order;
-    if (info_.controller.empty()) info_.controller = "pi";
-  }
-  std::string name() const override { return info_.name; }
-  std::string family() const override { return info_.family; }
-  int declared_order() const override { return info_.declared_order; }
-  int rotation_order() const override { return info_.rotation_order; }
-  bool adaptive() const override { return true; }
-  std::string controller() const override { return info_.controller; }
-  std::string description() const override { return info_.description; }
+      : Integrator(adaptive_facts(std::move(info))), with_stepper_(std::move(with_stepper)) {}
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
     const Tolerances tol = tolerances_of(options);
-    const std::string controller = controller_of(info_.controller, options);
+    const std::string controller = controller_of(this->controller(), options);
     return with_stepper_(problem, options, tol, [&](auto& stepper) {
-      return drive_adaptive(problem, options, info_.declared_order, stepper, controller);
+      return drive_adaptive(problem, options, declared_order(), stepper, controller);
     });
   }
 
  private:
-  MethodInfo info_;
+  static MethodInfo adaptive_facts(MethodInfo info) {
+    info.adaptive = true;
+    if (info.controller.empty()) info.controller = "pi";
+    return info;
+  }
   WithStepper with_stepper_;
 };
 

@@ -27,13 +27,17 @@ Mat3 rotation_of_quaternion(const Eigen::Vector4d& q) {
 
 }  // namespace
 
-std::string Rk4Projected::description() const {
-  return projection_ == Projection::svd
-             ? "classical RK4 on the flat view with R projected onto SO(3) after every step (polar factor by a "
-               "3x3 SVD): 4 rhs and one SVD a step"
-             : "classical RK4 on the flat view with R projected onto SO(3) after every step (polar factor by a "
-               "Newton-Schulz step): 4 rhs and two 3x3 products a step";
-}
+Rk4Projected::Rk4Projected(Projection projection)
+    : Integrator({.name = projection == Projection::svd ? "rk4-projected-svd" : "rk4-projected",
+                  .family = "projection",
+                  .declared_order = 4,
+                  .description = projection == Projection::svd
+                                     ? "classical RK4 on the flat view with R projected onto SO(3) after every "
+                                       "step (polar factor by a 3x3 SVD): 4 rhs and one SVD a step"
+                                     : "classical RK4 on the flat view with R projected onto SO(3) after every "
+                                       "step (polar factor by a Newton-Schulz step): 4 rhs and two 3x3 products "
+                                       "a step"}),
+      projection_(projection) {}
 
 RunResult Rk4Projected::integrate(const Problem& problem, const RunOptions& options) const {
   auto f = [&](const FlatState& y, FlatState& dy) { problem.flat_rhs(y.data(), dy.data()); };
@@ -48,10 +52,12 @@ RunResult Rk4Projected::integrate(const Problem& problem, const RunOptions& opti
   return drive_fixed_step(problem, options, step);
 }
 
-std::string Rk4Quaternion::description() const {
-  return "classical RK4 on (q, z), a unit quaternion for R with q' = (0, omega) (x) q / 2, normalised after "
-         "every step: 4 rhs and one normalisation a step";
-}
+Rk4Quaternion::Rk4Quaternion()
+    : Integrator({.name = "rk4-quaternion",
+                  .family = "quaternion",
+                  .declared_order = 4,
+                  .description = "classical RK4 on (q, z), a unit quaternion for R with q' = (0, omega) (x) q / 2, "
+                                 "normalised after every step: 4 rhs and one normalisation a step"}) {}
 
 RunResult Rk4Quaternion::integrate(const Problem& problem, const RunOptions& options) const {
   const bool anisotropic = problem.model().anisotropic();

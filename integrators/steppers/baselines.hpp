@@ -22,13 +22,7 @@ enum class Projection { newton_schulz, svd };
 
 class Rk4Projected final : public Integrator {
  public:
-  explicit Rk4Projected(Projection projection = Projection::newton_schulz) : projection_(projection) {}
-  std::string name() const override {
-    return projection_ == Projection::svd ? "rk4-projected-svd" : "rk4-projected";
-  }
-  std::string family() const override { return "projection"; }
-  int declared_order() const override { return 4; }
-  std::string description() const override;
+  explicit Rk4Projected(Projection projection = Projection::newton_schulz);
   RunResult integrate(const Problem& problem, const RunOptions& options) const override;
 
  private:
@@ -37,10 +31,7 @@ class Rk4Projected final : public Integrator {
 
 class Rk4Quaternion final : public Integrator {
  public:
-  std::string name() const override { return "rk4-quaternion"; }
-  std::string family() const override { return "quaternion"; }
-  int declared_order() const override { return 4; }
-  std::string description() const override;
+  Rk4Quaternion();
   RunResult integrate(const Problem& problem, const RunOptions& options) const override;
 };
 

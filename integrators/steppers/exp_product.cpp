@@ -89,23 +89,35 @@ ExpPlan plan_of(const ExpProductScheme& scheme) {
   return plan;
 }
 
-ExpProductMethod::ExpProductMethod(ExpProductScheme scheme) : scheme_(std::move(scheme)) {
-  plan_of(scheme_);  // rejects a malformed scheme here, not in a run
-}
+namespace {
 
-std::string ExpProductMethod::description() const {
-  return std::to_string(scheme_.stages.size()) + "-stage " + scheme_.kind +
-         " method on the Lie-group view, " + std::to_string(exponentials_per_step(true)) +
-         " exponentials a step (" + std::to_string(exponentials_per_step(false)) +
-         " for a homogeneous ball): " + scheme_.source;
-}
-
-int ExpProductMethod::exponentials_per_step(bool anisotropic) const {
-  const ExpPlan plan = plan_of(scheme_);
+int exponentials_per_step_of(const ExpProductScheme& scheme, bool anisotropic) {
+  const ExpPlan plan = plan_of(scheme);
   int n = plan.update.count;
   if (anisotropic)
     for (std::size_t i = 1; i < static_cast<std::size_t>(plan.stages); ++i) n += plan.stage[i].count;
   return n;
+}
+
+// (plan_of, through the counts, rejects a malformed scheme here, not in a run)
+MethodInfo facts_of(const ExpProductScheme& scheme) {
+  return {.name = scheme.name,
+          .family = scheme.family,
+          .declared_order = scheme.order,
+          .rotation_order = scheme.rotation_order,
+          .description = std::to_string(scheme.stages.size()) + "-stage " + scheme.kind +
+                         " method on the Lie-group view, " + std::to_string(exponentials_per_step_of(scheme, true)) +
+                         " exponentials a step (" + std::to_string(exponentials_per_step_of(scheme, false)) +
+                         " for a homogeneous ball): " + scheme.source};
+}
+
+}  // namespace
+
+ExpProductMethod::ExpProductMethod(ExpProductScheme scheme)
+    : Integrator(facts_of(scheme)), scheme_(std::move(scheme)) {}
+
+int ExpProductMethod::exponentials_per_step(bool anisotropic) const {
+  return exponentials_per_step_of(scheme_, anisotropic);
 }
 
 RunResult ExpProductMethod::integrate(const Problem& problem, const RunOptions& options) const {

@@ -47,11 +47,6 @@ class ExpProductMethod final : public Integrator {
   // Throws std::invalid_argument for a scheme whose stage uses a field not
   // yet computed.
   explicit ExpProductMethod(ExpProductScheme scheme);
-  std::string name() const override { return scheme_.name; }
-  std::string family() const override { return scheme_.family; }
-  int declared_order() const override { return scheme_.order; }
-  int rotation_order() const override { return scheme_.rotation_order > 0 ? scheme_.rotation_order : scheme_.order; }
-  std::string description() const override;
   RunResult integrate(const Problem& problem, const RunOptions& options) const override;
 
   const ExpProductScheme& scheme() const { return scheme_; }

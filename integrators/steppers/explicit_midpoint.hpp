@@ -9,10 +9,11 @@ namespace rb {
 
 class ExplicitMidpoint final : public Integrator {
  public:
-  std::string name() const override { return "midpoint"; }
-  std::string family() const override { return "rk"; }
-  int declared_order() const override { return 2; }
-  std::string description() const override { return "explicit midpoint rule on the flat view (the README's example)"; }
+  ExplicitMidpoint()
+      : Integrator({.name = "midpoint",
+                    .family = "rk",
+                    .declared_order = 2,
+                    .description = "explicit midpoint rule on the flat view (the README's example)"}) {}
 
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
     FlatState k1, k2, mid;  // stage storage lives outside the step: no allocation per step

@@ -1,6 +1,6 @@
 #pragma once
 // Adaptive explicit Runge-Kutta on the flat view y in R^14 with an embedded
-// pair: the flat counterpart of MuntheKaasAdaptive, with the same controller
+// pair: the flat counterpart of rkmk_adaptive, with the same controller
 // and the same kind of error norm, so that flat and Lie-group adaptivity
 // compare on equal terms. R drifts off SO(3).
 //
@@ -8,7 +8,7 @@
 //   atol + rtol max(|y_n,i|, |y_n+1,i|); norm: root mean square (Hairer's).
 // - The step size comes from the shared controllers
 //   (integrators/controllers/): Gustafsson's PI by default, as for
-//   MuntheKaasAdaptive; RunOptions::controller chooses another.
+//   rkmk_adaptive; RunOptions::controller chooses another.
 // - No dense output: steps are clamped to land on every output time.
 // - FSAL where the tableau's error weights use its FSAL stage: the stage at
 //   (t + h, y_new) starts the next step; otherwise F(y_new) is evaluated

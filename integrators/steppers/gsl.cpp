@@ -20,41 +20,54 @@ namespace rb {
 
 namespace {
 
-// What the suite knows about each GSL stepper. order: the order of the
-// solution GSL propagates (measured by the registry's order test).
-struct StepperInfo {
+// What the suite knows about each GSL stepper: GSL's name and type, and its
+// facts (the registry name, family and drive are added per drive by
+// facts_of). The declared order is that of the solution GSL propagates
+// (measured by the registry's order test); needs_jacobian: modified Newton
+// (or BDF/extrapolation) with the Jacobian; variable_order: only meaningful
+// with a tolerance, so adaptive only.
+struct GslStepper {
   const char* name;
   const gsl_odeiv2_step_type* (*type)();
-  int order;
-  bool implicit;        // modified Newton (or BDF/extrapolation) with the Jacobian
-  bool variable_order;  // only meaningful with a tolerance: adaptive only
-  const char* what;     // for `rollbench list`
+  bool variable_order;
+  MethodInfo facts;
 };
 
 // clang-format off
-const StepperInfo kSteppers[] = {
-  {"rk2", [] { return gsl_odeiv2_step_rk2; }, 3, false, false,
-   "embedded RK 2(3); GSL advances with the 3rd-order member (order 3, 3 rhs/step)"},
-  {"rk4", [] { return gsl_odeiv2_step_rk4; }, 4, false, false,
-   "classical RK4 with step doubling: each step is two RK4 half steps plus one full step for the error (11 rhs/step)"},
-  {"rkf45", [] { return gsl_odeiv2_step_rkf45; }, 5, false, false,
-   "Runge-Kutta-Fehlberg 4(5), advances with the 5th-order solution (6 rhs/step)"},
-  {"rkck", [] { return gsl_odeiv2_step_rkck; }, 5, false, false,
-   "Cash-Karp 4(5), advances with the 5th-order solution (6 rhs/step)"},
-  {"rk8pd", [] { return gsl_odeiv2_step_rk8pd; }, 8, false, false,
-   "Prince-Dormand 8(7), advances with the 8th-order solution (13 rhs/step)"},
-  {"rk1imp", [] { return gsl_odeiv2_step_rk1imp; }, 1, true, false,
-   "implicit Euler, modified Newton with the exact Jacobian, step doubling (3 solves/step)"},
-  {"rk2imp", [] { return gsl_odeiv2_step_rk2imp; }, 2, true, false,
-   "implicit midpoint (1-stage Gauss), modified Newton with the exact Jacobian, step doubling"},
-  {"rk4imp", [] { return gsl_odeiv2_step_rk4imp; }, 4, true, false,
-   "2-stage Gauss implicit RK, modified Newton with the exact Jacobian, step doubling"},
-  {"bsimp", [] { return gsl_odeiv2_step_bsimp; }, 12, true, true,
-   "Bader-Deuflhard semi-implicit extrapolation with the exact Jacobian, variable order (GSL reports 12)"},
-  {"msadams", [] { return gsl_odeiv2_step_msadams; }, 12, false, true,
-   "Adams predictor-corrector multistep (Nordsieck), variable order 1-12, functional iteration"},
-  {"msbdf", [] { return gsl_odeiv2_step_msbdf; }, 5, true, true,
-   "BDF multistep (Nordsieck), variable order 1-5, Newton with the exact Jacobian"},
+const GslStepper kSteppers[] = {
+  {"rk2", [] { return gsl_odeiv2_step_rk2; }, false,
+   {.declared_order = 3, .needs_jacobian = false,
+    .description = "embedded RK 2(3); GSL advances with the 3rd-order member (order 3, 3 rhs/step)"}},
+  {"rk4", [] { return gsl_odeiv2_step_rk4; }, false,
+   {.declared_order = 4, .needs_jacobian = false,
+    .description = "classical RK4 with step doubling: each step is two RK4 half steps plus one full step for the error (11 rhs/step)"}},
+  {"rkf45", [] { return gsl_odeiv2_step_rkf45; }, false,
+   {.declared_order = 5, .needs_jacobian = false,
+    .description = "Runge-Kutta-Fehlberg 4(5), advances with the 5th-order solution (6 rhs/step)"}},
+  {"rkck", [] { return gsl_odeiv2_step_rkck; }, false,
+   {.declared_order = 5, .needs_jacobian = false,
+    .description = "Cash-Karp 4(5), advances with the 5th-order solution (6 rhs/step)"}},
+  {"rk8pd", [] { return gsl_odeiv2_step_rk8pd; }, false,
+   {.declared_order = 8, .needs_jacobian = false,
+    .description = "Prince-Dormand 8(7), advances with the 8th-order solution (13 rhs/step)"}},
+  {"rk1imp", [] { return gsl_odeiv2_step_rk1imp; }, false,
+   {.declared_order = 1, .needs_jacobian = true,
+    .description = "implicit Euler, modified Newton with the exact Jacobian, step doubling (3 solves/step)"}},
+  {"rk2imp", [] { return gsl_odeiv2_step_rk2imp; }, false,
+   {.declared_order = 2, .needs_jacobian = true,
+    .description = "implicit midpoint (1-stage Gauss), modified Newton with the exact Jacobian, step doubling"}},
+  {"rk4imp", [] { return gsl_odeiv2_step_rk4imp; }, false,
+   {.declared_order = 4, .needs_jacobian = true,
+    .description = "2-stage Gauss implicit RK, modified Newton with the exact Jacobian, step doubling"}},
+  {"bsimp", [] { return gsl_odeiv2_step_bsimp; }, true,
+   {.declared_order = 12, .needs_jacobian = true,
+    .description = "Bader-Deuflhard semi-implicit extrapolation with the exact Jacobian, variable order (GSL reports 12)"}},
+  {"msadams", [] { return gsl_odeiv2_step_msadams; }, true,
+   {.declared_order = 12, .needs_jacobian = false,
+    .description = "Adams predictor-corrector multistep (Nordsieck), variable order 1-12, functional iteration"}},
+  {"msbdf", [] { return gsl_odeiv2_step_msbdf; }, true,
+   {.declared_order = 5, .needs_jacobian = true,
+    .description = "BDF multistep (Nordsieck), variable order 1-5, Newton with the exact Jacobian"}},
 };
 // clang-format on
 
@@ -195,7 +208,7 @@ int find_stepper(const std::string& name) {
   for (std::size_t i = 0; i < std::size(kSteppers); ++i)
     if (name == kSteppers[i].name) return static_cast<int>(i);
   std::string known;
-  for (const StepperInfo& s : kSteppers) known += (known.empty() ? "" : ", ") + std::string(s.name);
+  for (const GslStepper& s : kSteppers) known += (known.empty() ? "" : ", ") + std::string(s.name);
   throw InputError("GSL has no odeiv2 stepper '" + name + "' (known: " + known + ")", "integrator");
 }
 
@@ -210,26 +223,33 @@ void gsl_errors_off() {
   (void)done;
 }
 
+namespace {
+
+// The stepper's facts for a drive: "gsl-rk4" for a fixed step,
+// "gsl-rk4-adaptive" for the adaptive drive.
+MethodInfo facts_of(const GslStepper& s, GslDrive drive) {
+  const bool adaptive = drive == GslDrive::adaptive;
+  MethodInfo facts = s.facts;
+  facts.name = std::string("gsl-") + s.name + (adaptive ? "-adaptive" : "");
+  facts.family = "gsl";
+  facts.adaptive = adaptive;
+  facts.description = std::string("GSL odeiv2 ") + s.name + ": " + s.facts.description +
+                      (adaptive ? "; adaptive (evolve + standard control on y, rtol/atol)"
+                                : "; fixed step (gsl_odeiv2_step_apply per step)");
+  return facts;
+}
+
+}  // namespace
+
 GslIntegrator::GslIntegrator(const std::string& stepper, GslDrive drive)
-    : index_(find_stepper(stepper)), drive_(drive) {
+    : GslIntegrator(find_stepper(stepper), drive) {}
+
+GslIntegrator::GslIntegrator(int index, GslDrive drive)
+    : Integrator(facts_of(kSteppers[index], drive)), index_(index), drive_(drive) {
   gsl_errors_off();
   if (drive == GslDrive::fixed_step && kSteppers[index_].variable_order)
-    throw InputError("GSL " + stepper + " has a variable order: it runs adaptive only", "integrator");
-}
-
-std::string GslIntegrator::name() const {
-  return std::string("gsl-") + kSteppers[index_].name + (adaptive() ? "-adaptive" : "");
-}
-
-int GslIntegrator::declared_order() const { return kSteppers[index_].order; }
-
-bool GslIntegrator::needs_jacobian() const { return kSteppers[index_].implicit; }
-
-std::string GslIntegrator::description() const {
-  const StepperInfo& s = kSteppers[index_];
-  return std::string("GSL odeiv2 ") + s.name + ": " + s.what +
-         (adaptive() ? "; adaptive (evolve + standard control on y, rtol/atol)"
-                     : "; fixed step (gsl_odeiv2_step_apply per step)");
+    throw InputError(std::string("GSL ") + kSteppers[index_].name + " has a variable order: it runs adaptive only",
+                     "integrator");
 }
 
 namespace {
@@ -285,13 +305,13 @@ class GslEvolveStepper {
 
 RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& options) const {
   gsl_errors_off();
-  const StepperInfo& info = kSteppers[index_];
+  const GslStepper& info = kSteppers[index_];
   const std::string stepper = info.name;
   CallbackState cb;
   cb.problem = &problem;
-  const bool check_f = drive_ != GslDrive::fixed_step || info.implicit;
+  const bool check_f = drive_ != GslDrive::fixed_step || needs_jacobian();
   gsl_odeiv2_system sys{check_f ? &rhs_callback : &rhs_callback_unchecked,
-                        info.implicit ? &jacobian_callback : nullptr, kFlatSize, &cb};
+                        needs_jacobian() ? &jacobian_callback : nullptr, kFlatSize, &cb};
 
   if (drive_ == GslDrive::fixed_step) {
     if (!(options.h > 0.0) || !std::isfinite(options.h))
@@ -325,7 +345,7 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
       advance(next, t, h, cost);
       cb.margins = nullptr;
     };
-    return info.implicit ? drive_fixed_step(problem, options, advance)
+    return needs_jacobian() ? drive_fixed_step(problem, options, advance)
                          : drive_fixed_step(problem, options, advance_giving_margins);
   }
 

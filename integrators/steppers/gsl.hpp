@@ -27,18 +27,12 @@ class GslIntegrator final : public Integrator {
   // stepper: GSL's name ("rk4", "rkf45", "msbdf", ...). Throws InputError
   // (key "integrator") for a stepper GSL does not have, or a variable-order
   // one (bsimp, msadams, msbdf) asked to run with a fixed step.
+  // Its name is "gsl-rk4" for a fixed step, "gsl-rk4-adaptive" for the
+  // adaptive drive. Its declared order is that of the solution GSL
+  // propagates, which is not always the one gsl_odeiv2_step_order reports:
+  // rk2 advances with its 3rd-order member; variable-order methods declare
+  // their highest order.
   GslIntegrator(const std::string& stepper, GslDrive drive);
-
-  // "gsl-rk4" for a fixed step, "gsl-rk4-adaptive" for the adaptive drive.
-  std::string name() const override;
-  std::string family() const override { return "gsl"; }
-  // The order of the solution GSL propagates, which is not always the one
-  // gsl_odeiv2_step_order reports: rk2 advances with its 3rd-order member;
-  // variable-order methods declare their highest order.
-  int declared_order() const override;
-  bool adaptive() const override { return drive_ == GslDrive::adaptive; }
-  bool needs_jacobian() const override;
-  std::string description() const override;
 
   // Fixed step: options.h > 0 is the step; rtol/atol, when given, set the
   // Newton tolerance of the implicit steppers (default 1e-13). Adaptive:
@@ -46,6 +40,7 @@ class GslIntegrator final : public Integrator {
   RunResult integrate(const Problem& problem, const RunOptions& options) const override;
 
  private:
+  GslIntegrator(int index, GslDrive drive);
   int index_;  // into the stepper table in gsl.cpp
   GslDrive drive_;
 };

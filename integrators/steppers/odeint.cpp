@@ -26,23 +26,16 @@ namespace ode = boost::numeric::odeint;
 void load(const FlatState& y, OdeintState& x) { std::copy_n(y.data(), kFlatSize, x.begin()); }
 void store(const OdeintState& x, FlatState& y) { std::copy_n(x.begin(), kFlatSize, y.data()); }
 
-// What an adapter is called and how `rollbench list` shows it.
-struct Info {
-  std::string name;
-  int order;
-  std::string description;
-};
-
+// An adapter's facts: its registry name, declared order and line for
+// `rollbench list`, in the family "odeint".
 class OdeintIntegrator : public Integrator {
  public:
-  explicit OdeintIntegrator(Info info) : info_(std::move(info)) {}
-  std::string name() const override { return info_.name; }
-  std::string family() const override { return "odeint"; }
-  int declared_order() const override { return info_.order; }
-  std::string description() const override { return info_.description; }
-
- private:
-  Info info_;
+  OdeintIntegrator(std::string name, int order, std::string description, bool adaptive = false)
+      : Integrator({.name = std::move(name),
+                    .family = "odeint",
+                    .declared_order = order,
+                    .adaptive = adaptive,
+                    .description = std::move(description)}) {}
 };
 
 // ---- fixed step ----
@@ -224,8 +217,8 @@ class DenseDopri5 {
 template <class Stepper>
 class OdeintAdaptive final : public OdeintIntegrator {
  public:
-  using OdeintIntegrator::OdeintIntegrator;
-  bool adaptive() const override { return true; }
+  OdeintAdaptive(std::string name, int order, std::string description)
+      : OdeintIntegrator(std::move(name), order, std::move(description), true) {}
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
     Stepper stepper(problem, tolerances_of(options));
     return drive_adaptive(problem, options, declared_order(), stepper);
@@ -239,59 +232,59 @@ using Controlled = ControlledStepper<ode::controlled_runge_kutta<Rk>>;
 
 std::unique_ptr<Integrator> odeint_euler() {
   return std::make_unique<OdeintFixed<ode::euler<OdeintState>>>(
-      Info{"odeint-euler", 1, "Boost.Odeint euler (explicit Euler) on the flat view"});
+      "odeint-euler", 1, "Boost.Odeint euler (explicit Euler) on the flat view");
 }
 
 std::unique_ptr<Integrator> odeint_rk4() {
   return std::make_unique<OdeintFixed<ode::runge_kutta4<OdeintState>>>(
-      Info{"odeint-rk4", 4, "Boost.Odeint runge_kutta4 (classic RK4, 4 evaluations a step) on the flat view"});
+      "odeint-rk4", 4, "Boost.Odeint runge_kutta4 (classic RK4, 4 evaluations a step) on the flat view");
 }
 
 std::unique_ptr<Integrator> odeint_cash_karp54() {
   return std::make_unique<OdeintFixed<ode::runge_kutta_cash_karp54<OdeintState>>>(
-      Info{"odeint-cash-karp54", 5, "Boost.Odeint runge_kutta_cash_karp54 at fixed step (5th-order solution)"});
+      "odeint-cash-karp54", 5, "Boost.Odeint runge_kutta_cash_karp54 at fixed step (5th-order solution)");
 }
 
 std::unique_ptr<Integrator> odeint_dopri5() {
   return std::make_unique<OdeintFixed<ode::runge_kutta_dopri5<OdeintState>>>(
-      Info{"odeint-dopri5", 5, "Boost.Odeint runge_kutta_dopri5 at fixed step (5th order, FSAL)"});
+      "odeint-dopri5", 5, "Boost.Odeint runge_kutta_dopri5 at fixed step (5th order, FSAL)");
 }
 
 std::unique_ptr<Integrator> odeint_fehlberg78() {
   return std::make_unique<OdeintFixed<ode::runge_kutta_fehlberg78<OdeintState>>>(
-      Info{"odeint-fehlberg78", 8, "Boost.Odeint runge_kutta_fehlberg78 at fixed step (8th-order solution)"});
+      "odeint-fehlberg78", 8, "Boost.Odeint runge_kutta_fehlberg78 at fixed step (8th-order solution)");
 }
 
 std::unique_ptr<Integrator> odeint_abm4() {
   return std::make_unique<OdeintAbm<4>>(
-      Info{"odeint-abm4", 4, "Boost.Odeint adams_bashforth_moulton<4> (PECE), started with runge_kutta4"});
+      "odeint-abm4", 4, "Boost.Odeint adams_bashforth_moulton<4> (PECE), started with runge_kutta4");
 }
 
 std::unique_ptr<Integrator> odeint_abm5() {
   return std::make_unique<OdeintAbm<5>>(
-      Info{"odeint-abm5", 5, "Boost.Odeint adams_bashforth_moulton<5> (PECE), started with runge_kutta4"});
+      "odeint-abm5", 5, "Boost.Odeint adams_bashforth_moulton<5> (PECE), started with runge_kutta4");
 }
 
 std::unique_ptr<Integrator> odeint_dopri5_adaptive() {
   return std::make_unique<OdeintAdaptive<DenseDopri5>>(
-      Info{"odeint-dopri5-adaptive", 5, "Boost.Odeint controlled runge_kutta_dopri5 with dense output"});
+      "odeint-dopri5-adaptive", 5, "Boost.Odeint controlled runge_kutta_dopri5 with dense output");
 }
 
 std::unique_ptr<Integrator> odeint_cash_karp54_adaptive() {
   return std::make_unique<OdeintAdaptive<Controlled<ode::runge_kutta_cash_karp54<OdeintState>>>>(
-      Info{"odeint-cash-karp54-adaptive", 5, "Boost.Odeint controlled runge_kutta_cash_karp54"});
+      "odeint-cash-karp54-adaptive", 5, "Boost.Odeint controlled runge_kutta_cash_karp54");
 }
 
 std::unique_ptr<Integrator> odeint_fehlberg78_adaptive() {
   return std::make_unique<OdeintAdaptive<Controlled<ode::runge_kutta_fehlberg78<OdeintState>>>>(
-      Info{"odeint-fehlberg78-adaptive", 8, "Boost.Odeint controlled runge_kutta_fehlberg78"});
+      "odeint-fehlberg78-adaptive", 8, "Boost.Odeint controlled runge_kutta_fehlberg78");
 }
 
 // Extrapolation has no single order; 8 is what it is declared (and guesses
 // its first step) with.
 std::unique_ptr<Integrator> odeint_bulirsch_stoer() {
   return std::make_unique<OdeintAdaptive<ControlledStepper<BulirschStoer>>>(
-      Info{"odeint-bulirsch-stoer", 8, "Boost.Odeint bulirsch_stoer (controlled extrapolation, variable order)"});
+      "odeint-bulirsch-stoer", 8, "Boost.Odeint bulirsch_stoer (controlled extrapolation, variable order)");
 }
 
 }  // namespace rb

@@ -45,25 +45,9 @@ void so3_dexpinv_callback(void* c, const double* u, const double* w, double* out
   ++context.cost->dexpinv_evals;
 }
 
-// The facts the library declares, copied out of its storage.
-struct PluginFacts {
-  std::string name, family, description;
-  int order = 0;
-  int view = ROLLBENCH_VIEW_FLAT;
-};
-
 class PluginStepper final : public Integrator {
  public:
-  PluginStepper(PluginFacts facts, StepFn step, std::string path)
-      : facts_(std::move(facts)), step_(step), path_(std::move(path)) {}
-
-  std::string name() const override { return facts_.name; }
-  std::string family() const override { return facts_.family; }
-  int declared_order() const override { return facts_.order; }
-  std::string description() const override {
-    const char* view = facts_.view == ROLLBENCH_VIEW_LIE ? "Lie-group view" : "flat view";
-    return facts_.description + " (plug-in, " + view + ", " + path_ + ")";
-  }
+  PluginStepper(MethodInfo facts, StepFn step) : Integrator(std::move(facts)), step_(step) {}
 
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
     PluginCallContext context{&problem, nullptr};
@@ -78,7 +62,7 @@ class PluginStepper final : public Integrator {
         char at[48];
         std::snprintf(at, sizeof at, " at t = %.9g", t);
         // the driver ends the run here, at the last valid state
-        throw StepFailure(Status::error, "stepper '" + facts_.name + "' returned error code " +
+        throw StepFailure(Status::error, "stepper '" + name() + "' returned error code " +
                                              std::to_string(code) + at +
                                              (message[0] != '\0' ? std::string(": ") + message : std::string()));
       }
@@ -87,9 +71,7 @@ class PluginStepper final : public Integrator {
   }
 
  private:
-  PluginFacts facts_;
   StepFn step_;
-  std::string path_;
 };
 
 bool is_name_character(char c) {
@@ -97,11 +79,13 @@ bool is_name_character(char c) {
          c == '+' || c == '-';
 }
 
-// The library's facts, checked; where names the file and the symbol.
-PluginFacts checked_facts(const struct rollbench_stepper_info* info, const std::string& where) {
+// The library's facts, checked and copied out of its storage; where names
+// the file and the symbol, path the file for the description.
+MethodInfo checked_facts(const struct rollbench_stepper_info* info, const std::string& where,
+                         const std::string& path) {
   auto refuse = [&](const std::string& why) { throw InputError(where + ": " + why, "stepper"); };
   if (info == nullptr) refuse("returned NULL");
-  PluginFacts facts;
+  MethodInfo facts;
   if (info->name == nullptr || info->name[0] == '\0') refuse("the name is empty");
   facts.name = info->name;
   for (const char c : facts.name)
@@ -110,12 +94,13 @@ PluginFacts checked_facts(const struct rollbench_stepper_info* info, const std::
   if (info->family == nullptr || info->family[0] == '\0') refuse("the family of '" + facts.name + "' is empty");
   facts.family = info->family;
   if (info->order < 1) refuse("the order of '" + facts.name + "' is " + std::to_string(info->order) + ", not >= 1");
-  facts.order = info->order;
+  facts.declared_order = info->order;
   if (info->view != ROLLBENCH_VIEW_FLAT && info->view != ROLLBENCH_VIEW_LIE)
     refuse("the view of '" + facts.name + "' is " + std::to_string(info->view) +
            ", not ROLLBENCH_VIEW_FLAT (0) or ROLLBENCH_VIEW_LIE (1)");
-  facts.view = info->view;
-  facts.description = info->description != nullptr ? info->description : "";
+  const char* view = info->view == ROLLBENCH_VIEW_LIE ? "Lie-group view" : "flat view";
+  facts.description = std::string(info->description != nullptr ? info->description : "") + " (plug-in, " + view +
+                      ", " + path + ")";
   return facts;
 }
 
@@ -155,8 +140,8 @@ std::unique_ptr<Integrator> load_plugin_stepper(const std::string& path) {
                            ", this rollbench takes " + std::to_string(ROLLBENCH_STEPPER_ABI_VERSION) +
                            " (rebuild it against integrators/plugin/rollbench_stepper.h)",
                        "stepper");
-    PluginFacts facts = checked_facts(info(), "'" + path + "': rollbench_stepper_info()");
-    return std::make_unique<PluginStepper>(std::move(facts), step, path);
+    MethodInfo facts = checked_facts(info(), "'" + path + "': rollbench_stepper_info()", path);
+    return std::make_unique<PluginStepper>(std::move(facts), step);
   } catch (...) {
     dlclose(library);  // nothing of it was registered
     throw;

@@ -7,12 +7,13 @@
 namespace rb {
 
 MuntheKaasCayley::MuntheKaasCayley(Tableau tableau, std::string name)
-    : tableau_(std::move(tableau)), name_(std::move(name)) {}
-
-std::string MuntheKaasCayley::description() const {
-  return "Runge-Kutta-Munthe-Kaas (" + tableau_.name() +
-         " tableau) with the Cayley map for coordinates; cayley maps counted as exp, dcayinv as dexpinv";
-}
+    : Integrator({.name = std::move(name),
+                  .family = "rkmk",
+                  .declared_order = tableau.order(),
+                  .description = "Runge-Kutta-Munthe-Kaas (" + tableau.name() +
+                                 " tableau) with the Cayley map for coordinates; cayley maps counted as exp, "
+                                 "dcayinv as dexpinv"}),
+      tableau_(std::move(tableau)) {}
 
 RunResult MuntheKaasCayley::integrate(const Problem& problem, const RunOptions& options) const {
   const StageTerms terms(tableau_);

@@ -12,15 +12,10 @@ namespace rb {
 class MuntheKaasCayley final : public Integrator {
  public:
   MuntheKaasCayley(Tableau tableau, std::string name);
-  std::string name() const override { return name_; }
-  std::string family() const override { return "rkmk"; }
-  int declared_order() const override { return tableau_.order(); }
-  std::string description() const override;
   RunResult integrate(const Problem& problem, const RunOptions& options) const override;
 
  private:
   Tableau tableau_;
-  std::string name_;
 };
 
 }  // namespace rb

@@ -6,15 +6,15 @@
 
 namespace rb {
 
-RungeKutta::RungeKutta(Tableau tableau, std::string name)
-    : tableau_(std::move(tableau)), name_(name.empty() ? tableau_.name() : std::move(name)) {}
-
-std::string RungeKutta::description() const {
-  return "classical explicit RK (" + tableau_.name() + " tableau, " + std::to_string(tableau_.stages()) +
-         " stages) on the flat view";
-}
-
 namespace {
+
+MethodInfo facts_of(const Tableau& tableau, std::string name) {
+  return {.name = name.empty() ? tableau.name() : std::move(name),
+          .family = "rk",
+          .declared_order = tableau.order(),
+          .description = "classical explicit RK (" + tableau.name() + " tableau, " +
+                         std::to_string(tableau.stages()) + " stages) on the flat view"};
+}
 
 // One step of an explicit tableau with S stages, S = 0 for any number. With S
 // known the stage loop unrolls around the inlined right-hand side, and the
@@ -49,6 +49,9 @@ struct RkStep {
 };
 
 }  // namespace
+
+RungeKutta::RungeKutta(Tableau tableau, std::string name)
+    : Integrator(facts_of(tableau, std::move(name))), tableau_(std::move(tableau)) {}
 
 RunResult RungeKutta::integrate(const Problem& problem, const RunOptions& options) const {
   const StageTerms terms(tableau_);

@@ -12,17 +12,12 @@ class RungeKutta final : public Integrator {
  public:
   // name defaults to the tableau's name.
   explicit RungeKutta(Tableau tableau, std::string name = {});
-  std::string name() const override { return name_; }
-  std::string family() const override { return "rk"; }
-  int declared_order() const override { return tableau_.order(); }
-  std::string description() const override;
   RunResult integrate(const Problem& problem, const RunOptions& options) const override;
 
   const Tableau& tableau() const { return tableau_; }
 
  private:
   Tableau tableau_;
-  std::string name_;
 };
 
 }  // namespace rb

@@ -20,22 +20,13 @@ namespace rb {
 template <class MakeStepper>
 class SteppedMethod final : public Integrator {
  public:
-  SteppedMethod(MethodInfo info, MakeStepper make) : info_(std::move(info)), make_(std::move(make)) {
-    if (info_.rotation_order == 0) info_.rotation_order = info_.declared_order;
-  }
-  std::string name() const override { return info_.name; }
-  std::string family() const override { return info_.family; }
-  int declared_order() const override { return info_.declared_order; }
-  int rotation_order() const override { return info_.rotation_order; }
-  bool needs_jacobian() const override { return info_.needs_jacobian; }
-  std::string description() const override { return info_.description; }
+  SteppedMethod(MethodInfo info, MakeStepper make) : Integrator(std::move(info)), make_(std::move(make)) {}
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
     auto stepper = make_(problem);
     return drive_fixed_step(problem, options, stepper);
   }
 
  private:
-  MethodInfo info_;
   MakeStepper make_;
 };
 
