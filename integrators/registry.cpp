@@ -7,12 +7,19 @@
 #include "integrators/steppers/gsl.hpp"
 #include "integrators/steppers/explicit_midpoint.hpp"
 #include "integrators/steppers/munthe_kaas.hpp"
-#include "integrators/steppers/munthe_kaas_adaptive.hpp"
 #include "integrators/steppers/odeint.hpp"
 #include "integrators/steppers/rkmk_cayley.hpp"
 #include "integrators/steppers/runge_kutta.hpp"
-#include "integrators/tableaus.hpp"
-#include "integrators/tableaus_high_order.hpp"
+#include "integrators/steppers/tableau_methods.hpp"
+#include "integrators/methods/bogacki_shampine32.hpp"
+#include "integrators/methods/dormand_prince54.hpp"
+#include "integrators/methods/dormand_prince853.hpp"
+#include "integrators/methods/euler.hpp"
+#include "integrators/methods/fehlberg78.hpp"
+#include "integrators/methods/heun.hpp"
+#include "integrators/methods/kutta3.hpp"
+#include "integrators/methods/rk38.hpp"
+#include "integrators/methods/rk4.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {
@@ -23,7 +30,7 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   std::vector<std::unique_ptr<Integrator>> r;
   auto add = [&](std::unique_ptr<Integrator> integrator) { r.push_back(std::move(integrator)); };
   using D = DexpinvKind;
-  namespace t = tableaus;
+  namespace t = methods;
 
   // classical explicit Runge-Kutta on the flat view
   add(std::make_unique<RungeKutta>(t::euler()));
@@ -44,12 +51,14 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   // --- lie-group adaptive and baselines ---
   // fixed-step RKMK at high order (what order buys), adaptive RKMK on
   // embedded pairs (what adaptivity buys), and the practitioners' fixes
-  add(std::make_unique<MuntheKaas>(t::dormand_prince5(), "rkmk5"));
-  add(std::make_unique<MuntheKaas>(t::fehlberg8(), "rkmk8"));
-  add(std::make_unique<MuntheKaasAdaptive>(pairs::bogacki_shampine32(), "rkmk-bs32-adaptive"));
-  add(std::make_unique<MuntheKaasAdaptive>(pairs::dormand_prince54(), "rkmk-dp54-adaptive"));
-  add(std::make_unique<MuntheKaasAdaptive>(pairs::dormand_prince853(), "rkmk-dp853-adaptive"));
-  add(std::make_unique<MuntheKaasAdaptive>(pairs::fehlberg78(), "rkmk-f78-adaptive"));
+  // (one line names a tableau, a way of stepping and a controller)
+  const std::string constant = kConstantController, pi = "pi";
+  add(rkmk_method(t::dormand_prince54(), "rkmk5", constant));
+  add(rkmk_method(t::fehlberg78(), "rkmk8", constant));
+  add(rkmk_method(t::bogacki_shampine32(), "rkmk-bs32-adaptive", pi));
+  add(rkmk_method(t::dormand_prince54(), "rkmk-dp54-adaptive", pi));
+  add(rkmk_method(t::dormand_prince853(), "rkmk-dp853-adaptive", pi));
+  add(rkmk_method(t::fehlberg78(), "rkmk-f78-adaptive", pi));
   add(std::make_unique<Rk4Projected>());
   add(std::make_unique<Rk4Projected>(Projection::svd));
   add(std::make_unique<Rk4Quaternion>());
@@ -65,7 +74,7 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   add(std::make_unique<ExpProductMethod>(reversed(schemes::cf4(), "cf4-reversed")));
   add(std::make_unique<ExpProductMethod>(reversed(schemes::cg3(), "cg3-reversed")));
   add(std::make_unique<ExpProductMethod>(reversed(schemes::cg4a(), "cg4a-reversed")));
-  add(std::make_unique<ExpProductAdaptive>(schemes::cg3_pair()));
+  add(exp_product_adaptive(schemes::cg3_pair()));
   add(std::make_unique<MuntheKaasCayley>(t::rk4(), "rkmk4-cayley"));
   // --- end commutator-free and Crouch-Grossman ---
 

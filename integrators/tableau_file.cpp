@@ -203,6 +203,21 @@ TableauFile read_tableau(const json& doc, const std::string& path) {
     if (!doc["source"].is_string()) throw InputError(std::string("must be a string, not ") + doc["source"].type_name(), "source");
     file.source = doc["source"].get<std::string>();
   }
+  // the one tableau: b propagates, e = b - b_err estimates the error
+  TableauCoefficients full;
+  full.name = name;
+  full.order = file.tableau.order();
+  full.a = k.a;
+  full.b = k.b;
+  full.c = k.c;
+  for (std::size_t i = 0; i < file.b_err.size(); ++i) full.e.push_back(k.b[i] - file.b_err[i]);
+  full.embedded_order = file.err_order;
+  full.source = file.source;
+  try {
+    file.tableau = Tableau(std::move(full));
+  } catch (const InputError& e) {
+    throw InputError(e.message(), e.key() == "e" ? "b_err" : k.file_key(e.key()));
+  }
   return file;
 }
 

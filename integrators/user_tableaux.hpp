@@ -9,13 +9,8 @@
 
 #include "integrators/integrator.hpp"
 #include "integrators/tableau_file.hpp"
-#include "integrators/tableaus_high_order.hpp"
 
 namespace rb {
-
-// The file's tableau as an embedded pair (b propagates, e = b - b_err; FSAL
-// when the last stage's row is b at c = 1); the file must have b_err.
-EmbeddedPair embedded_pair_of(const TableauFile& file);
 
 // The file's integrators, in the order rk-, rkmk-, rk-...-adaptive, rkmk-...-adaptive.
 std::vector<std::unique_ptr<Integrator>> integrators_of(const TableauFile& file);

@@ -1,6 +1,7 @@
 #include "integrators/controllers/controller.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "problems/input_error.hpp"
@@ -32,6 +33,12 @@ std::string controller_names() {
   std::string names = std::string(kConstantController) + ", " + kLibraryController;
   for (const ControllerKind& k : filter_controllers()) names += std::string(", ") + k.name;
   return names;
+}
+
+std::string controller_title(std::string_view name) {
+  std::string title(name);
+  for (char& ch : title) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  return title;
 }
 
 const ControllerKind& filter_controller(std::string_view name) {

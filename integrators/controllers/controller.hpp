@@ -44,6 +44,9 @@ std::string controller_names();
 // known ones when there is none.
 const ControllerKind& filter_controller(std::string_view name);
 
+// The name as a description writes it: "pi" -> "PI".
+std::string controller_title(std::string_view name);
+
 // What a controller decided about one attempt.
 struct StepDecision {
   bool accepted = false;

@@ -1,21 +1,20 @@
 #pragma once
 // Source: DOP853 of Hairer, Norsett & Wanner, Solving ODEs I (coefficients as in its Fortran code, also used by SciPy), with its 7th-order dense output.
-#include "integrators/methods/embedded_pair.hpp"
+#include "integrators/methods/coefficients.hpp"
+#include "integrators/tableau.hpp"
 
-namespace rb::pairs {
+namespace rb::methods {
 
 // Dormand-Prince 8(5,3) (DOP853): 12 stages an attempt, the FSAL stage after
-// acceptance, 3 more for the 7th-order dense output (16 in all).
-inline EmbeddedPair dormand_prince853() {
-  EmbeddedPair p;
+// acceptance, 3 more for the 7th-order dense output (16 in all). Its error
+// |err5|^2 / sqrt(|err5|^2 + 0.01 |err3|^2) behaves like h^8.
+inline Tableau dormand_prince853() {
+  TableauCoefficients p;
   p.name = "dp853";
   p.order = 8;
-  p.error_order = 8;  // |err5|^2 / sqrt(|err5|^2 + 0.01 |err3|^2) behaves like h^8
-  p.stages = 12;
-  p.fsal = 12;
-  p.total = 16;
+  const auto a_at = [&p](int i, int j) { return p.a[static_cast<std::size_t>(i * 16 + j)]; };
   // clang-format off
-  p.a = detail::matrix(16, {
+  p.a = matrix(16, {
     {1, 0, 5.26001519587677318785587544488e-2},
     {2, 0, 1.97250569845378994544595329183e-2}, {2, 1, 5.91751709536136983633785987549e-2},
     {3, 0, 2.95875854768068491816892993775e-2}, {3, 2, 8.87627564304205475450678981324e-2},
@@ -65,18 +64,20 @@ inline EmbeddedPair dormand_prince853() {
          127.0 / 195, 0.6, 6.0 / 7, 1.0, 1.0, 0.1, 0.2, 7.0 / 9};
   // clang-format on
   p.b.assign(16, 0.0);
-  for (int j = 0; j < 12; ++j) p.b[static_cast<std::size_t>(j)] = p.a_at(12, j);
+  for (int j = 0; j < 12; ++j) p.b[static_cast<std::size_t>(j)] = a_at(12, j);
   p.e.assign(16, 0.0);
-  const detail::Entry e5[] = {{0, 0, 0.1312004499419488073250102996e-1}, {0, 5, -0.1225156446376204440720569753e+1},
+  const Entry e5[] = {{0, 0, 0.1312004499419488073250102996e-1}, {0, 5, -0.1225156446376204440720569753e+1},
                               {0, 6, -0.4957589496572501915214079952}, {0, 7, 0.1664377182454986536961530415e+1},
                               {0, 8, -0.3503288487499736816886487290}, {0, 9, 0.3341791187130174790297318841},
                               {0, 10, 0.8192320648511571246570742613e-1},
                               {0, 11, -0.2235530786388629525884427845e-1}};
-  for (const detail::Entry& x : e5) p.e[static_cast<std::size_t>(x.j)] = x.value;
-  p.e3 = p.b;
-  p.e3[0] -= 0.244094488188976377952755905512;
-  p.e3[8] -= 0.733846688281611857341361741547;
-  p.e3[11] -= 0.220588235294117647058823529412e-1;
+  for (const Entry& x : e5) p.e[static_cast<std::size_t>(x.j)] = x.value;
+  p.embedded_order = 5;
+  p.e_stretched = p.b;
+  p.e_stretched[0] -= 0.244094488188976377952755905512;
+  p.e_stretched[8] -= 0.733846688281611857341361741547;
+  p.e_stretched[11] -= 0.220588235294117647058823529412e-1;
+  p.stretched_order = 3;
 
   // The dense output as Hairer writes it: y(theta) = y_n + theta (F0 +
   // (1-theta) (F1 + theta (F2 + (1-theta) (F3 + theta (F4 + (1-theta) (F5 +
@@ -131,7 +132,8 @@ inline EmbeddedPair dormand_prince853() {
     }
     w = std::move(next);
   }
-  return p;
+  p.source = "DOP853 of Hairer, Norsett & Wanner, Solving ODEs I (coefficients as in its Fortran code)";
+  return Tableau(std::move(p));
 }
 
-}  // namespace rb::pairs
+}  // namespace rb::methods

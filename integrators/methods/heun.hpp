@@ -2,8 +2,8 @@
 // Source: Heun (1900), the explicit trapezoidal rule.
 #include "integrators/tableau.hpp"
 
-namespace rb::tableaus {
+namespace rb::methods {
 
-inline Tableau heun() { return Tableau("heun", 2, {0, 0, 1, 0}, {0.5, 0.5}, {0, 1}); }
+inline Tableau heun() { return Tableau("heun", 2, {0, 0, 1, 0}, {0.5, 0.5}, {0, 1}, "Heun (1900), the explicit trapezoidal rule"); }
 
-}  // namespace rb::tableaus
+}  // namespace rb::methods

@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "integrators/driver.hpp"
+#include "integrators/steppers/adaptive_method.hpp"
 #include "integrators/steppers/exp_product_stages.hpp"
 
 namespace rb {
@@ -80,38 +80,32 @@ class ExpPairStepper {
   bool have_first_ = false;
 };
 
-// Throws std::invalid_argument for a scheme without an embedded update or a
-// malformed one.
-MethodInfo facts_of(const ExpProductScheme& scheme) {
+}  // namespace
+
+std::unique_ptr<Integrator> exp_product_adaptive(ExpProductScheme scheme) {
   if (scheme.embedded_order < 1 || plan_of(scheme).embedded.count == 0)
     throw std::invalid_argument(scheme.name + ": an adaptive method needs an embedded update and its order");
   const ExpPlan plan = plan_of(scheme);
   int stage_exps = 0;
   for (std::size_t i = 1; i < static_cast<std::size_t>(plan.stages); ++i) stage_exps += plan.stage[i].count;
   const int update_exps = plan.update.count + plan.embedded.count;
-  return {.name = scheme.name,
-          .family = scheme.family,
-          .declared_order = scheme.order,
-          .adaptive = true,
-          .controller = "pi",
-          .description = "adaptive " + scheme.kind + " method, order " + std::to_string(scheme.order) +
-                         " with an embedded order-" + std::to_string(scheme.embedded_order) +
-                         " update (error on (rotation vector, z), PI controller): " + std::to_string(plan.stages - 1) +
-                         " rhs and " + std::to_string(stage_exps + update_exps) + " exponentials an attempt (" +
-                         std::to_string(update_exps) + " for a homogeneous ball); steps clamped onto the outputs: " +
-                         scheme.source};
-}
-
-}  // namespace
-
-ExpProductAdaptive::ExpProductAdaptive(ExpProductScheme scheme)
-    : Integrator(facts_of(scheme)), scheme_(std::move(scheme)) {}
-
-RunResult ExpProductAdaptive::integrate(const Problem& problem, const RunOptions& options) const {
-  const ExpPlan plan = plan_of(scheme_);
-  const int error_order = std::min(scheme_.order, scheme_.embedded_order) + 1;
-  ExpPairStepper stepper(problem, plan, error_order, tolerances_of(options));
-  return drive_adaptive(problem, options, scheme_.order, stepper, controller_of(controller(), options));
+  MethodInfo info{.name = scheme.name,
+                  .family = scheme.family,
+                  .declared_order = scheme.order,
+                  .controller = "pi",
+                  .description = "adaptive " + scheme.kind + " method, order " + std::to_string(scheme.order) +
+                                 " with an embedded order-" + std::to_string(scheme.embedded_order) +
+                                 " update (error on (rotation vector, z), PI controller): " +
+                                 std::to_string(plan.stages - 1) + " rhs and " +
+                                 std::to_string(stage_exps + update_exps) + " exponentials an attempt (" +
+                                 std::to_string(update_exps) +
+                                 " for a homogeneous ball); steps clamped onto the outputs: " + scheme.source};
+  const int error_order = std::min(scheme.order, scheme.embedded_order) + 1;
+  return adaptive_method(std::move(info), [plan, error_order](const Problem& problem, const RunOptions&,
+                                                              const Tolerances& tol, auto&& drive) {
+    ExpPairStepper stepper(problem, plan, error_order, tol);
+    return drive(stepper);
+  });
 }
 
 }  // namespace rb

@@ -16,22 +16,16 @@
 // Cost per attempt: (stages - 1) rhs evaluations (the first stage once per
 // accepted step), the stage exponentials on an anisotropic ball, and the
 // exponentials of both updates.
+#include <memory>
+
 #include "integrators/integrator.hpp"
 #include "integrators/steppers/exp_product.hpp"
 
 namespace rb {
 
-class ExpProductAdaptive final : public Integrator {
- public:
-  // Throws std::invalid_argument for a scheme without an embedded update
-  // or a malformed one.
-  explicit ExpProductAdaptive(ExpProductScheme scheme);
-  RunResult integrate(const Problem& problem, const RunOptions& options) const override;
-
-  const ExpProductScheme& scheme() const { return scheme_; }
-
- private:
-  ExpProductScheme scheme_;
-};
+// The scheme's adaptive integrator (its name and family, PI by default).
+// Throws std::invalid_argument for a scheme without an embedded update or a
+// malformed one.
+std::unique_ptr<Integrator> exp_product_adaptive(ExpProductScheme scheme);
 
 }  // namespace rb

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "integrators/adaptive.hpp"
+#include "integrators/steppers/adaptive_method.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {
@@ -18,37 +18,40 @@ class FlatPairStepper {
  public:
   static constexpr bool dense_output = false;
 
-  FlatPairStepper(const Problem& problem, const EmbeddedPair& pair, const Tolerances& tol)
-      : problem_(&problem), pair_(&pair), tol_(tol), y_(problem.y0()) {}
+  FlatPairStepper(const Problem& problem, const Tableau& tableau, const Tolerances& tol)
+      : problem_(&problem),
+        tableau_(&tableau),
+        tol_(tol),
+        y_(problem.y0()),
+        attempt_(tableau.attempt_stages()),
+        fsal_in_attempt_(tableau.fsal_stage() && *tableau.fsal_stage() < attempt_) {}
 
-  int error_order() const { return pair_->error_order; }
+  int error_order() const { return tableau_->error_order(); }
 
   // The error norm of a step of h (NaN when the step is not finite); the
   // step is kept in y_new_ for accept.
   double try_step(double /*t*/, double h, Cost& cost) {
-    const EmbeddedPair& p = *pair_;
     if (!have_first_) {
       problem_->flat_rhs(y_.data(), k_[0].data());
       ++cost.rhs_evals;
       have_first_ = true;
     }
-    // stages 1 .. stages-1; the FSAL stage (if any) is among them and its
-    // state is y_new itself
-    for (int i = 1; i < p.stages; ++i) {
-      stage_ = y_ + h * combine(&p.a[static_cast<std::size_t>(i * p.total)], i);
+    // the attempt's stages; the FSAL stage (if among them) is at y_new
+    // itself, whose sum y + h sum b_j k_j is the same sum as its row's
+    for (int i = 1; i < attempt_; ++i) {
+      stage_ = y_ + h * combine(row(i), i);
       problem_->flat_rhs(stage_.data(), k_[static_cast<std::size_t>(i)].data());
       ++cost.rhs_evals;
     }
-    y_new_ = p.fsal < p.stages ? stage_for(p.fsal, h) : FlatState(y_ + h * combine(p.b.data(), p.stages));
+    y_new_ = y_ + h * combine(tableau_->b_weights().data(), attempt_);
     return y_new_.allFinite() ? error_norm(h) : std::numeric_limits<double>::quiet_NaN();
   }
 
   void accept(double /*t*/, double /*h*/, Cost& cost) {
-    const EmbeddedPair& p = *pair_;
     y_ = y_new_;
     // the next step's first stage
-    if (p.fsal < p.stages) {
-      k_[0] = k_[static_cast<std::size_t>(p.fsal)];
+    if (fsal_in_attempt_) {
+      k_[0] = k_[static_cast<std::size_t>(*tableau_->fsal_stage())];
     } else {
       problem_->flat_rhs(y_.data(), k_[0].data());
       ++cost.rhs_evals;
@@ -67,54 +70,52 @@ class FlatPairStepper {
     return sum;
   }
 
-  // the FSAL stage's state: its row of A is b, so it is y_new
-  FlatState stage_for(int i, double h) const {
-    return y_ + h * combine(&pair_->a[static_cast<std::size_t>(i * pair_->total)], i);
+  const double* row(int i) const {
+    return &tableau_->a_row_major()[static_cast<std::size_t>(i * tableau_->total_stages())];
   }
 
   double error_norm(double h) const {
     const FlatState scale =
         (tol_.atol + tol_.rtol * y_.cwiseAbs().cwiseMax(y_new_.cwiseAbs()).array()).matrix();
-    const FlatState e = h * combine(pair_->e.data(), pair_->stages);
+    const FlatState e = h * combine(tableau_->e().data(), attempt_);
     return std::sqrt((e.array() / scale.array()).square().sum() / static_cast<double>(kFlatSize));
   }
 
   const Problem* problem_;
-  const EmbeddedPair* pair_;
+  const Tableau* tableau_;
   Tolerances tol_;
   FlatState y_, y_new_, stage_;
+  int attempt_;  // the stages of an attempt
+  bool fsal_in_attempt_;
   std::array<FlatState, kMaxStages> k_;
   bool have_first_ = false;
 };
 
-MethodInfo facts_of(const EmbeddedPair& p, std::string name) {
-  return {.name = std::move(name),
-          .family = "rk-adaptive",
-          .declared_order = p.order,
-          .adaptive = true,
-          .controller = "pi",
-          .description = "adaptive explicit RK on the " + p.name + " pair (order " + std::to_string(p.order) + ", " +
-                         std::to_string(p.stages) + " stages" + (p.fsal < p.stages ? ", FSAL" : "") +
-                         ", PI controller by default) on the flat view; steps clamped onto the outputs"};
-}
-
 }  // namespace
 
-RungeKuttaAdaptive::RungeKuttaAdaptive(EmbeddedPair pair, std::string name)
-    : Integrator(facts_of(pair, std::move(name))), pair_(std::move(pair)) {
-  const EmbeddedPair& p = pair_;
-  const auto n = static_cast<std::size_t>(p.total);
-  // the stage loop runs over the attempt's stages only: no dense-output stages
-  const bool fits = p.stages >= 2 && p.stages == p.total && p.total <= kMaxStages && p.fsal >= 1 &&
-                    p.fsal <= p.stages && p.error_order >= 1 && p.a.size() == n * n && p.c.size() == n &&
-                    p.b.size() == n && p.e.size() == n && p.e3.empty();
-  if (!fits) throw InputError("embedded pair '" + p.name + "' has inconsistent sizes for a flat adaptive method", "pair");
-  (void)p.tableau(p.name);  // b against its order conditions
-}
-
-RunResult RungeKuttaAdaptive::integrate(const Problem& problem, const RunOptions& options) const {
-  FlatPairStepper stepper(problem, pair_, tolerances_of(options));
-  return drive_adaptive(problem, options, pair_.order, stepper, controller_of(controller(), options));
+std::unique_ptr<Integrator> rk_adaptive(Tableau tableau, std::string name, const std::string& controller) {
+  (void)filter_controller(controller);  // throws for an unknown one
+  const Tableau& t = tableau;
+  if (!t.has_error_estimate())
+    throw InputError("tableau '" + t.name() + "' has no embedded weights for an adaptive method", "e");
+  // the flat error norm is the plain one
+  if (!t.e_stretched().empty())
+    throw InputError("tableau '" + t.name() + "' has a stretched error estimate, which the flat pair does not combine",
+                     "e_stretched");
+  const bool fsal = t.fsal_stage() && *t.fsal_stage() < t.attempt_stages();
+  MethodInfo info{.name = std::move(name),
+                  .family = "rk-adaptive",
+                  .declared_order = t.order(),
+                  .controller = controller,
+                  .description = "adaptive explicit RK on the " + t.name() + " pair (order " +
+                                 std::to_string(t.order()) + ", " + std::to_string(t.attempt_stages()) + " stages" +
+                                 (fsal ? ", FSAL" : "") + ", " + controller_title(controller) +
+                                 " controller by default) on the flat view; steps clamped onto the outputs"};
+  return adaptive_method(std::move(info), [tableau = std::move(tableau)](const Problem& problem, const RunOptions&,
+                                                                         const Tolerances& tol, auto&& drive) {
+    FlatPairStepper stepper(problem, tableau, tol);
+    return drive(stepper);
+  });
 }
 
 }  // namespace rb

@@ -7,7 +7,7 @@
 #include <limits>
 #include <vector>
 
-#include "integrators/adaptive.hpp"
+#include "integrators/steppers/adaptive_method.hpp"
 #include "problems/input_error.hpp"
 #include "problems/so3.hpp"
 
@@ -43,34 +43,41 @@ class LieStepper {
  public:
   static constexpr bool dense_output = Dense;
 
-  LieStepper(const Problem& problem, const EmbeddedPair& pair, const Tolerances& tol,
+  LieStepper(const Problem& problem, const Tableau& tableau, const Tolerances& tol,
              const std::vector<double>& outputs)
-      : problem_(&problem), pair_(&pair), tol_(tol), outputs_(&outputs) {
+      : problem_(&problem),
+        tableau_(&tableau),
+        tol_(tol),
+        outputs_(&outputs),
+        attempt_(tableau.attempt_stages()),
+        fsal_(tableau.fsal_stage().value_or(-1)),
+        fsal_in_attempt_(fsal_ >= 0 && fsal_ < attempt_) {
     R_ = rotation_of(problem.y0());
     z_ = z_of(problem.y0());
-    for (int i = 0; i < pair.total; ++i)
-      rows_[static_cast<std::size_t>(i)] = SparseWeights(&pair.a[static_cast<std::size_t>(i * pair.total)], i);
-    b_ = SparseWeights(pair.b.data(), pair.stages);
-    e_ = SparseWeights(pair.e.data(), pair.stages);
-    if (!pair.e3.empty()) e3_ = SparseWeights(pair.e3.data(), pair.stages);
+    const int total = tableau.total_stages();
+    for (int i = 0; i < total; ++i)
+      rows_[static_cast<std::size_t>(i)] =
+          SparseWeights(&tableau.a_row_major()[static_cast<std::size_t>(i * total)], i);
+    b_ = SparseWeights(tableau.b_weights().data(), attempt_);
+    e_ = SparseWeights(tableau.e().data(), attempt_);
+    if (!tableau.e_stretched().empty()) e3_ = SparseWeights(tableau.e_stretched().data(), attempt_);
     if constexpr (Dense) dense_y_.reserve(8);
   }
 
-  int error_order() const { return pair_->error_order; }
+  int error_order() const { return tableau_->error_order(); }
 
   // The error norm of a step of h (NaN when the step is not finite); the
   // step is kept in w_new_ for accept.
   double try_step(double /*t*/, double h, Cost& cost) {
-    const EmbeddedPair& p = *pair_;
     if (!have_first_) {
       problem_->lie_rhs(R_, z_.data(), omega_first_.data(), g_first_.data());
       ++cost.rhs_evals;
       have_first_ = true;
     }
     k_[0] << omega_first_, g_first_;
-    for (int i = 1; i < p.stages; ++i) evaluate_stage(i, h, R_, z_, cost);
+    for (int i = 1; i < attempt_; ++i) evaluate_stage(i, h, R_, z_, cost);
     // the step: (u_n+1, z_n+1 - z_n)
-    if (p.fsal < p.stages) {
+    if (fsal_in_attempt_) {
       w_new_ = w_fsal_;
     } else {
       w_new_ = combine(b_, h);
@@ -80,16 +87,15 @@ class LieStepper {
   }
 
   void accept(double t, double h, Cost& cost) {
-    const EmbeddedPair& p = *pair_;
     R_prev_ = R_;
     z_prev_ = z_;
     R_ = so3_exp(w_new_.head<3>()) * R_prev_;
     ++cost.exp_evals;
     z_ = z_prev_ + w_new_.tail<kZSize>();
     // the next step's first stage
-    if (p.fsal < p.stages) {
+    if (fsal_in_attempt_) {
       omega_first_ = omega_fsal_;
-      g_first_ = k_[p.fsal].tail<kZSize>();
+      g_first_ = k_[static_cast<std::size_t>(fsal_)].tail<kZSize>();
     } else {
       problem_->lie_rhs(R_, z_.data(), omega_first_.data(), g_first_.data());
       ++cost.rhs_evals;
@@ -129,7 +135,6 @@ class LieStepper {
   // h sum_j a_ij k_j, (R_n, z_n) the step's start; the stage orientation
   // R_i = exp(hat(U)) R_n is formed only where R enters (anisotropic ball).
   void evaluate_stage(int i, double h, const Mat3& R_n, const ZState& z_n, Cost& cost) {
-    const EmbeddedPair& p = *pair_;
     const LieVec w = combine(rows_[static_cast<std::size_t>(i)], h);
     const ZState z = z_n + w.tail<kZSize>();
     Vec3 omega;
@@ -143,7 +148,7 @@ class LieStepper {
     ++cost.rhs_evals;
     k_[static_cast<std::size_t>(i)] << dexpinv(w.head<3>(), omega), g;
     ++cost.dexpinv_evals;
-    if (i == p.fsal) {
+    if (i == fsal_) {
       w_fsal_ = w;
       omega_fsal_ = omega;
     }
@@ -152,13 +157,12 @@ class LieStepper {
   // The controller's error: RMS of h sum e_i k_i against the scales
   // (Hairer's stretched combination of two estimates for DP853).
   double error_norm(const LieVec& w_new, double h) const {
-    const EmbeddedPair& p = *pair_;
     LieVec scale;
     scale.head<3>().setConstant(tol_.atol + tol_.rtol);
     scale.tail<kZSize>() =
         (tol_.atol + tol_.rtol * z_.cwiseAbs().cwiseMax((z_ + w_new.tail<kZSize>()).cwiseAbs()).array()).matrix();
     const double e2 = (combine(e_, h).array() / scale.array()).square().sum();
-    if (p.e3.empty()) return std::sqrt(e2 / kLieSize);
+    if (e3_.n == 0) return std::sqrt(e2 / kLieSize);
     const double e3 = (combine(e3_, h).array() / scale.array()).square().sum();
     if (e2 == 0.0 && e3 == 0.0) return 0.0;
     return e2 / std::sqrt((e2 + 0.01 * e3) * kLieSize);
@@ -167,24 +171,27 @@ class LieStepper {
   // Every output strictly inside (t, t + h): the extra stages once, then
   // u(theta), z(theta) from the dense weights and R = exp(hat(u)) R_n.
   void dense_outputs(double t, double h, const LieVec& w_new, Cost& cost) {
-    const EmbeddedPair& p = *pair_;
+    const Tableau& p = *tableau_;
     dense_t_.clear();
     dense_y_.clear();
     const std::vector<double>& out = *outputs_;
     while (next_out_ < out.size() && out[next_out_] <= t) ++next_out_;
     if (next_out_ == out.size() || out[next_out_] >= t + h) return;
-    if (p.fsal >= p.stages && p.total > p.fsal) {
-      k_[static_cast<std::size_t>(p.fsal)] << dexpinv(w_new.head<3>(), omega_first_), g_first_;
+    // the stages only the dense output needs; the FSAL one among them is
+    // the next step's first stage, already evaluated (its dexpinv differs)
+    if (fsal_ >= attempt_) {
+      k_[static_cast<std::size_t>(fsal_)] << dexpinv(w_new.head<3>(), omega_first_), g_first_;
       ++cost.dexpinv_evals;
     }
-    for (int i = p.fsal + 1; i < p.total; ++i) evaluate_stage(i, h, R_prev_, z_prev_, cost);
+    for (int i = attempt_; i < p.total_stages(); ++i)
+      if (i != fsal_) evaluate_stage(i, h, R_prev_, z_prev_, cost);
     for (std::size_t m = next_out_; m < out.size() && out[m] < t + h; ++m) {
       const double theta = (out[m] - t) / h;
       LieVec sum = LieVec::Zero();
-      for (int j = 0; j < p.total; ++j) {
-        const double* d = &p.dense[static_cast<std::size_t>(j * p.dense_degree)];
+      for (int j = 0; j < p.total_stages(); ++j) {
+        const double* d = &p.dense()[static_cast<std::size_t>(j * p.dense_degree())];
         double b = 0.0;
-        for (int q = p.dense_degree - 1; q >= 0; --q) b = (b + d[q]) * theta;
+        for (int q = p.dense_degree() - 1; q >= 0; --q) b = (b + d[q]) * theta;
         sum += b * k_[static_cast<std::size_t>(j)];
       }
       const LieVec w = h * sum;
@@ -198,9 +205,12 @@ class LieStepper {
   }
 
   const Problem* problem_;
-  const EmbeddedPair* pair_;
+  const Tableau* tableau_;
   Tolerances tol_;
   const std::vector<double>* outputs_;
+  int attempt_;           // the stages of an attempt
+  int fsal_;              // the FSAL stage, -1 without one
+  bool fsal_in_attempt_;  // the error estimate uses it (BS32, DP54)
   Mat3 R_, R_prev_;
   ZState z_, z_prev_;
   std::array<LieVec, kMaxStages> k_;
@@ -216,55 +226,52 @@ class LieStepper {
   std::vector<FlatState> dense_y_;
 };
 
-// use_dense: whether outputs come from the pair's dense output
-MethodInfo facts_of(const EmbeddedPair& p, std::string name, bool use_dense) {
-  const int per_attempt = p.stages - 1 + (p.fsal < p.stages ? 0 : 1);
-  std::string text = "adaptive Runge-Kutta-Munthe-Kaas on the " + p.name + " pair (order " +
-                     std::to_string(p.order) + ", error estimate on (u, z), PI controller): " +
-                     std::to_string(per_attempt) + " rhs and " + std::to_string(p.stages - 1) +
+}  // namespace
+
+namespace {
+
+std::string description_of(const Tableau& p, const std::string& controller, bool use_dense) {
+  const bool fsal_in_attempt = p.fsal_stage() && *p.fsal_stage() < p.attempt_stages();
+  const int per_attempt = p.attempt_stages() - 1 + (fsal_in_attempt ? 0 : 1);
+  // the stages past the attempt's, less the FSAL one (evaluated for the next step)
+  const int extra = p.total_stages() - p.attempt_stages() - (p.fsal_stage() && !fsal_in_attempt ? 1 : 0);
+  std::string text = "adaptive Runge-Kutta-Munthe-Kaas on the " + p.name() + " pair (order " +
+                     std::to_string(p.order()) + ", error estimate on (u, z), " + controller_title(controller) + " controller): " +
+                     std::to_string(per_attempt) + " rhs and " + std::to_string(p.attempt_stages() - 1) +
                      " dexpinv a step, one exp";
   if (use_dense)
-    text += "; outputs by its order-" + std::to_string(p.dense_order) + " dense output through exp" +
-            (p.total > p.fsal + 1 ? " (" + std::to_string(p.total - p.fsal - 1) + " extra rhs a step with outputs)"
-                                  : std::string());
+    text += "; outputs by its order-" + std::to_string(p.dense_order()) + " dense output through exp" +
+            (extra > 0 ? " (" + std::to_string(extra) + " extra rhs a step with outputs)" : std::string());
   else
     text += "; steps clamped onto the outputs";
-  return {.name = std::move(name),
-          .family = "lie-adaptive",
-          .declared_order = p.order,
-          .adaptive = true,
-          .controller = "pi",
-          .description = std::move(text)};
+  return text;
 }
 
 }  // namespace
 
-MuntheKaasAdaptive::MuntheKaasAdaptive(EmbeddedPair pair, std::string name, bool use_dense)
-    : Integrator(facts_of(pair, std::move(name), use_dense && pair.dense_order > 0)),
-      pair_(std::move(pair)),
-      use_dense_(use_dense && pair_.dense_order > 0) {
-  // the stage loops index by these sizes: a pair that does not fit is refused
-  const EmbeddedPair& p = pair_;
-  const auto n = static_cast<std::size_t>(p.total);
-  const bool fits = p.stages >= 2 && p.stages <= p.total && p.total <= kMaxStages && p.fsal >= 1 &&
-                    p.fsal <= p.stages && p.error_order >= 1 && p.a.size() == n * n && p.c.size() == n &&
-                    p.b.size() == n && p.e.size() == n && (p.e3.empty() || p.e3.size() == n) &&
-                    (p.dense_order == 0 || p.dense.size() == n * static_cast<std::size_t>(p.dense_degree));
-  if (!fits) throw InputError("embedded pair '" + p.name + "' has inconsistent sizes", "pair");
-  // the propagating weights against the order conditions (to 4)
-  (void)p.tableau(p.name);
-}
-
-RunResult MuntheKaasAdaptive::integrate(const Problem& problem, const RunOptions& options) const {
-  const Tolerances tol = tolerances_of(options);
-  const std::vector<double> outputs = output_times_of(problem, options);
-  const std::string controller = controller_of(this->controller(), options);
-  if (use_dense_) {
-    LieStepper<true> stepper(problem, pair_, tol, outputs);
-    return drive_adaptive(problem, options, pair_.order, stepper, controller);
-  }
-  LieStepper<false> stepper(problem, pair_, tol, outputs);
-  return drive_adaptive(problem, options, pair_.order, stepper, controller);
+std::unique_ptr<Integrator> rkmk_adaptive(Tableau tableau, std::string name, const std::string& controller,
+                                          bool use_dense) {
+  (void)filter_controller(controller);  // throws for an unknown one
+  if (!tableau.has_error_estimate())
+    throw InputError("tableau '" + tableau.name() + "' has no embedded weights for an adaptive method", "e");
+  use_dense = use_dense && tableau.dense_order() > 0;
+  MethodInfo info{.name = std::move(name),
+                  .family = "lie-adaptive",
+                  .declared_order = tableau.order(),
+                  .controller = controller,
+                  .description = description_of(tableau, controller, use_dense)};
+  return adaptive_method(std::move(info), [tableau = std::move(tableau), use_dense](const Problem& problem,
+                                                                                      const RunOptions& options,
+                                                                                      const Tolerances& tol,
+                                                                                      auto&& drive) {
+    const std::vector<double> outputs = output_times_of(problem, options);
+    if (use_dense) {
+      LieStepper<true> stepper(problem, tableau, tol, outputs);
+      return drive(stepper);
+    }
+    LieStepper<false> stepper(problem, tableau, tol, outputs);
+    return drive(stepper);
+  });
 }
 
 }  // namespace rb

@@ -22,24 +22,20 @@
 // Cost per accepted step: (stages - 1) rhs evaluations and dexpinv
 // applications in each attempt, plus the FSAL stage's rhs where the error
 // estimate does not use it, and one exp; each output adds one exp.
+#include <memory>
+#include <string>
+
 #include "integrators/integrator.hpp"
-#include "integrators/tableaus_high_order.hpp"
+#include "integrators/tableau.hpp"
 
 namespace rb {
 
-class MuntheKaasAdaptive final : public Integrator {
- public:
-  // use_dense = false clamps steps onto the outputs even where the pair has a
-  // dense output (for tests and comparisons). Throws InputError for a pair
-  // whose sizes do not fit or whose b fails the order conditions (to 4).
-  MuntheKaasAdaptive(EmbeddedPair pair, std::string name, bool use_dense = true);
-  RunResult integrate(const Problem& problem, const RunOptions& options) const override;
-
-  const EmbeddedPair& pair() const { return pair_; }
-
- private:
-  EmbeddedPair pair_;
-  bool use_dense_;
-};
+// RKMK on the tableau's embedded pair with a controller (a filter:
+// integrators/controllers/), family "lie-adaptive". use_dense = false clamps
+// steps onto the outputs even where the tableau has a dense output (for
+// tests and comparisons). Throws InputError for a tableau without embedded
+// weights or an unknown controller.
+std::unique_ptr<Integrator> rkmk_adaptive(Tableau tableau, std::string name, const std::string& controller = "pi",
+                                          bool use_dense = true);
 
 }  // namespace rb

@@ -12,7 +12,10 @@
 #include "integrators/steppers/munthe_kaas_adaptive.hpp"
 #include "integrators/order_conditions.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/tableaus_high_order.hpp"
+#include "integrators/methods/bogacki_shampine32.hpp"
+#include "integrators/methods/dormand_prince54.hpp"
+#include "integrators/methods/dormand_prince853.hpp"
+#include "integrators/methods/fehlberg78.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"
@@ -38,37 +41,49 @@ std::vector<double> minus(const std::vector<double>& x, const std::vector<double
   return d;
 }
 
-std::vector<EmbeddedPair> all_pairs() {
-  return {pairs::bogacki_shampine32(), pairs::dormand_prince54(), pairs::dormand_prince853(), pairs::fehlberg78()};
+std::vector<Tableau> all_pairs() {
+  return {methods::bogacki_shampine32(), methods::dormand_prince54(), methods::dormand_prince853(),
+          methods::fehlberg78()};
+}
+
+std::vector<double> b_of(const Tableau& t) {
+  std::vector<double> b;
+  for (int j = 0; j < t.total_stages(); ++j) b.push_back(t.b(j));
+  return b;
 }
 
 TEST(LieAdaptive, PairsSatisfyEveryOrderConditionOfTheirOrdersAndNoMore) {
-  // propagating b, embedded b - e (DP853: b - e is its 5th-order, b - e3 its 3rd-order member)
+  // propagating b, embedded b - e (DP853: b - e is its 5th-order, b - e_stretched its 3rd-order member)
   struct Want {
     int b, embedded, embedded3;
   };
   const Want want[] = {{3, 2, 0}, {5, 4, 0}, {8, 5, 3}, {8, 7, 0}};
-  const std::vector<EmbeddedPair> ps = all_pairs();
+  const std::vector<Tableau> ps = all_pairs();
   for (std::size_t k = 0; k < ps.size(); ++k) {
-    const EmbeddedPair& p = ps[k];
-    SCOPED_TRACE(p.name);
-    EXPECT_EQ(satisfied(p.a, p.b, p.total, 8), want[k].b);
-    EXPECT_EQ(p.order, want[k].b);
-    EXPECT_EQ(satisfied(p.a, minus(p.b, p.e), p.total, 8), want[k].embedded);
-    if (!p.e3.empty()) {
-      EXPECT_EQ(satisfied(p.a, minus(p.b, p.e3), p.total, 8), want[k].embedded3);
+    const Tableau& p = ps[k];
+    SCOPED_TRACE(p.name());
+    const int s = p.total_stages();
+    EXPECT_EQ(satisfied(p.a_row_major(), b_of(p), s, 8), want[k].b);
+    EXPECT_EQ(p.order(), want[k].b);
+    EXPECT_EQ(satisfied(p.a_row_major(), minus(b_of(p), p.e()), s, 8), want[k].embedded);
+    EXPECT_EQ(p.embedded_order(), want[k].embedded);
+    if (!p.e_stretched().empty()) {
+      EXPECT_EQ(satisfied(p.a_row_major(), minus(b_of(p), p.e_stretched()), s, 8), want[k].embedded3);
+      EXPECT_EQ(p.stretched_order(), want[k].embedded3);
     }
     // b weights the attempt's stages only; the FSAL row is b
-    for (int j = p.stages; j < p.total; ++j) EXPECT_EQ(p.b[static_cast<std::size_t>(j)], 0.0);
-    if (p.fsal < p.total) {
-      EXPECT_EQ(p.c[static_cast<std::size_t>(p.fsal)], 1.0);
-      for (int j = 0; j < p.total; ++j) EXPECT_NEAR(p.a_at(p.fsal, j), p.b[static_cast<std::size_t>(j)], 1e-15);
+    for (int j = p.stages(); j < s; ++j) EXPECT_EQ(p.b(j), 0.0);
+    if (p.fsal_stage()) {
+      const int f = *p.fsal_stage();
+      EXPECT_EQ(p.c(f), 1.0);
+      for (int j = 0; j < s; ++j) EXPECT_EQ(p.a(f, j), p.b(j));
     }
   }
 }
 
 TEST(LieAdaptive, FixedStepTableausPassQuadratureConditionsToTheirOrder) {
-  for (const Tableau& t : {tableaus::dormand_prince5(), tableaus::fehlberg8()}) {
+  // what rkmk5 and rkmk8 step with: the propagating weights of dp54 and f78
+  for (const Tableau& t : {methods::dormand_prince54(), methods::fehlberg78()}) {
     SCOPED_TRACE(t.name());
     EXPECT_EQ(t.satisfied_order(), t.order());
     // sum b_i c_i^(k-1) = 1/k and sum b_i c_i^(k-2) (A c)_i = 1/(k (k-1) ... ) via all trees
@@ -87,32 +102,33 @@ TEST(LieAdaptive, FixedStepTableausPassQuadratureConditionsToTheirOrder) {
 }
 
 TEST(LieAdaptive, DenseOutputsAreContinuousExtensionsOfTheirOrder) {
-  for (const EmbeddedPair& p : all_pairs()) {
-    if (p.dense_order == 0) continue;
-    SCOPED_TRACE(p.name);
+  for (const Tableau& p : all_pairs()) {
+    if (p.dense_order() == 0) continue;
+    SCOPED_TRACE(p.name());
+    const int s = p.total_stages(), degree = p.dense_degree();
     for (const double theta : {0.13, 0.5, 0.77, 1.0}) {
-      std::vector<double> w(static_cast<std::size_t>(p.total));
-      for (int j = 0; j < p.total; ++j) {
+      std::vector<double> w(static_cast<std::size_t>(s));
+      for (int j = 0; j < s; ++j) {
         double bj = 0.0;
-        for (int q = 0; q < p.dense_degree; ++q)
-          bj += p.dense[static_cast<std::size_t>(j * p.dense_degree + q)] * std::pow(theta, q + 1);
+        for (int q = 0; q < degree; ++q)
+          bj += p.dense()[static_cast<std::size_t>(j * degree + q)] * std::pow(theta, q + 1);
         w[static_cast<std::size_t>(j)] = bj;
         if (theta == 1.0) {
-          EXPECT_NEAR(bj, p.b[static_cast<std::size_t>(j)], 1e-12) << "b_" << j << "(1)";
+          EXPECT_NEAR(bj, p.b(j), 1e-12) << "b_" << j << "(1)";
         }
       }
-      EXPECT_GE(satisfied(p.a, w, p.total, 8, theta), p.dense_order) << "theta " << theta;
+      EXPECT_GE(satisfied(p.a_row_major(), w, s, 8, theta), p.dense_order()) << "theta " << theta;
     }
   }
 }
 
-TEST(LieAdaptive, RefusesPairsThatDoNotFit) {
-  EmbeddedPair short_e = pairs::dormand_prince54();
-  short_e.e.pop_back();
-  EXPECT_THROW(MuntheKaasAdaptive(short_e, "x"), InputError);
-  EmbeddedPair wrong_b = pairs::bogacki_shampine32();
-  wrong_b.b[0] += 0.1;  // no longer consistent: fails order 1
-  EXPECT_THROW(MuntheKaasAdaptive(wrong_b, "x"), InputError);
+TEST(LieAdaptive, RefusesTableauxWithoutAnErrorEstimate) {
+  try {
+    (void)rkmk_adaptive(Tableau("rk2", 2, {0, 0, 1, 0}, {0.5, 0.5}, {0, 1}), "x");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "'e': tableau 'rk2' has no embedded weights for an adaptive method");
+  }
 }
 
 // ---- runs ----
@@ -190,10 +206,10 @@ TEST(LieAdaptive, DenseOutputAgreesWithSteppingToTheSameTime) {
 // Clamped steps (no dense output) record the same outputs to the tolerance.
 TEST(LieAdaptive, DenseAndClampedOutputsAgree) {
   const Problem& p = shipped_scene("bowl-3d");
-  const MuntheKaasAdaptive dense(pairs::dormand_prince853(), "dense");
-  const MuntheKaasAdaptive clamped(pairs::dormand_prince853(), "clamped", false);
+  const auto dense = rkmk_adaptive(methods::dormand_prince853(), "dense");
+  const auto clamped = rkmk_adaptive(methods::dormand_prince853(), "clamped", "pi", false);
   const RunOptions o = tolerance_every(1e-9, 0.05, 2.0);
-  const RunResult a = dense.integrate(p, o), b = clamped.integrate(p, o);
+  const RunResult a = dense->integrate(p, o), b = clamped->integrate(p, o);
   ASSERT_EQ(a.status, Status::ok);
   ASSERT_EQ(b.status, Status::ok);
   ASSERT_EQ(a.output.t, b.output.t);
@@ -210,20 +226,24 @@ TEST(LieAdaptive, DenseAndClampedOutputsAgree) {
 // interpolated output one exp; 2 rhs for the initial step and 1 at the start.
 TEST(LieAdaptive, CountsRhsExpAndDexpinv) {
   const Problem& p = shipped_scene("gaussian-hills");
-  for (const char* method : kAdaptive) {
-    const auto& m = dynamic_cast<const MuntheKaasAdaptive&>(find_integrator(method));
-    const EmbeddedPair& pair = m.pair();
+  const std::vector<Tableau> tableaux = all_pairs();  // in kAdaptive's order
+  for (std::size_t k = 0; k < tableaux.size(); ++k) {
+    const char* method = kAdaptive[k];
+    const Integrator& m = find_integrator(method);
+    const Tableau& pair = tableaux[k];
     SCOPED_TRACE(method);
     RunOptions o = tolerance_every(1e-8, 1.0, 1.0);  // t_end only: no interpolation
     const RunResult r = m.integrate(p, o);
     ASSERT_EQ(r.status, Status::ok);
     const long attempts = r.cost.steps + r.cost.rejected;
-    const long after_accept = pair.fsal < pair.stages ? 0 : r.cost.steps;
-    EXPECT_EQ(r.cost.dexpinv_evals, (pair.stages - 1) * attempts);
-    EXPECT_EQ(r.cost.rhs_evals, 2 + 1 + (pair.stages - 1) * attempts + after_accept);
+    const int stages = pair.attempt_stages();
+    const bool fsal_in_attempt = pair.fsal_stage() && *pair.fsal_stage() < stages;
+    const long after_accept = fsal_in_attempt ? 0 : r.cost.steps;
+    EXPECT_EQ(r.cost.dexpinv_evals, (stages - 1) * attempts);
+    EXPECT_EQ(r.cost.rhs_evals, 2 + 1 + (stages - 1) * attempts + after_accept);
     EXPECT_EQ(r.cost.exp_evals, r.cost.steps);
     EXPECT_EQ(r.cost.jacobian_evals, 0);
-    if (pair.dense_order > 0) {
+    if (pair.dense_order() > 0) {
       const RunResult with_outputs = m.integrate(p, tolerance_every(1e-8, 0.01, 1.0));
       ASSERT_EQ(with_outputs.status, Status::ok);
       // 99 outputs inside steps, t_end at a step's end

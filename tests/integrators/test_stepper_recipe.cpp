@@ -7,7 +7,9 @@
 
 #include "bench/lib/report.hpp"
 #include "integrators/registry.hpp"
+#include "integrators/controllers/controller.hpp"
 #include "integrators/steppers/stepped_method.hpp"
+#include "integrators/steppers/tableau_methods.hpp"
 
 namespace rb {
 namespace {
@@ -80,6 +82,69 @@ TEST(StepperRecipe, TheDriverStopsItOnTheBudget) {
   EXPECT_EQ(run.message, "reached max_steps = 7");
   EXPECT_EQ(run.cost.steps, 7);
   EXPECT_DOUBLE_EQ(run.stop_time, 0.07);
+}
+
+// The tableau half of the recipe: one Tableau (Heun with Euler embedded,
+// which no registry entry uses) and one line per integrator naming the
+// tableau, the way of stepping and the controller.
+Tableau heun_euler() {
+  TableauCoefficients k;
+  k.name = "heun-euler";
+  k.order = 2;
+  k.a = {0, 0, 1, 0};
+  k.b = {0.5, 0.5};
+  k.c = {0, 1};
+  k.e = {-0.5, 0.5};  // b - b_hat with b_hat = (1, 0), Euler
+  k.embedded_order = 1;
+  k.source = "Heun (1900), Euler embedded";
+  return Tableau(std::move(k));
+}
+
+TEST(StepperRecipe, OneTableauAndOneLineEachGiveAFixedAndAnAdaptiveMethod) {
+  static const bool added = [] {
+    add_integrator(rkmk_method(heun_euler(), "test-rkmk-heun-euler", kConstantController), "test");
+    add_integrator(rkmk_method(heun_euler(), "test-rkmk-heun-euler-adaptive", "pi"), "test");
+    return true;
+  }();
+  (void)added;
+  const Integrator& fixed = find_integrator("test-rkmk-heun-euler");
+  const Integrator& adaptive = find_integrator("test-rkmk-heun-euler-adaptive");
+  EXPECT_EQ(fixed.family(), "rkmk");
+  EXPECT_EQ(fixed.controller(), kConstantController);
+  EXPECT_EQ(adaptive.family(), "lie-adaptive");
+  EXPECT_EQ(adaptive.controller(), "pi");
+  EXPECT_TRUE(adaptive.adaptive());
+
+  SweepSpec spec = preset("quick");
+  spec.scenes = {"valley-sideways"};
+  spec.integrators = {"test-rkmk-heun-euler", "test-rkmk-heun-euler-adaptive"};
+  spec.repeats = 1;
+  spec.stability.enabled = false;
+  const auto quiet = [](const std::string&) {};
+  const std::vector<SweepScene> scenes = prepare_scenes(spec);
+  const nlohmann::json report = make_report(spec, scenes, run_sweep(spec, scenes, quiet), {});
+  int fixed_runs = 0, adaptive_runs = 0;
+  for (const auto& run : report["runs"]) {
+    EXPECT_EQ(run["status"], "ok");
+    if (run["integrator"] == "test-rkmk-heun-euler") {
+      ++fixed_runs;
+      // two stages a step: no error estimate at fixed steps
+      EXPECT_EQ(run["rhs_evals"].get<long>(), 2 * run["steps"].get<long>());
+    } else {
+      ++adaptive_runs;
+      EXPECT_EQ(run["controller"], "pi");
+    }
+  }
+  EXPECT_EQ(fixed_runs, static_cast<int>(spec.hs.size()));
+  EXPECT_GT(adaptive_runs, 0);
+  bool measured = false;
+  for (const auto& order : report["orders"])
+    if (order["integrator"] == "test-rkmk-heun-euler") {
+      EXPECT_NEAR(order["observed"]["contact"].get<double>(), 2.0, 0.2);
+      EXPECT_EQ(order["pass"], true);
+      measured = true;
+    }
+  EXPECT_TRUE(measured);
 }
 
 }  // namespace

@@ -70,18 +70,23 @@ TEST(TableauFile, WithoutAnOrderTheHighestThatHoldsIsTaken) {
 
 TEST(TableauFile, ReadsTheSeminarsButcherLayoutAndTheEmbeddedWeights) {
   const TableauFile f = parse_tableau_file(kBs32, "t.json");
-  EXPECT_EQ(f.tableau.stages(), 4);
+  EXPECT_EQ(f.tableau.total_stages(), 4);
   EXPECT_EQ(f.tableau.c(2), 0.75);
   EXPECT_EQ(f.tableau.a(2, 1), 0.75);
   EXPECT_EQ(f.tableau.b(3), 0.0);
   EXPECT_EQ(f.tableau.order(), 3);
   EXPECT_EQ(f.err_order, 2);
   ASSERT_EQ(f.b_err.size(), 4u);
-  // as a pair: FSAL (the last row is b at c = 1), error estimate O(h^3)
-  const EmbeddedPair p = embedded_pair_of(f);
-  EXPECT_EQ(p.fsal, 3);
-  EXPECT_EQ(p.error_order, 3);
-  EXPECT_NEAR(p.e[3], -0.125, 1e-16);
+  // one tableau with its embedded weights: FSAL (the last row is b at c =
+  // 1), 3 stages at fixed steps and 4 an attempt, error estimate O(h^3)
+  const Tableau& p = f.tableau;
+  EXPECT_EQ(p.fsal_stage(), 3);
+  EXPECT_EQ(p.stages(), 3);
+  EXPECT_EQ(p.attempt_stages(), 4);
+  EXPECT_EQ(p.error_order(), 3);
+  EXPECT_EQ(p.embedded_order(), 2);
+  EXPECT_NEAR(p.e()[3], -0.125, 1e-16);
+  EXPECT_EQ(p.source(), f.source);
   // without err_order it is the highest order b_err holds
   EXPECT_EQ(parse_tableau_file(with(kBs32, R"("err_order": 2,)", ""), "t.json").err_order, 2);
 }

@@ -1,0 +1,48 @@
+#pragma once
+// An adaptive integrator made of parts, as SteppedMethod is a fixed-step
+// one: its facts (MethodInfo) and an error-estimating stepper (try_step /
+// accept, integrators/driver.hpp), run by drive_adaptive with a controller:
+// the method's default (MethodInfo::controller, "pi" unless given) or the
+// run's (RunOptions::controller, `--controller`).
+//
+// with_stepper(problem, options, tolerances, drive) makes the stepper for one
+// run and returns drive(stepper), so that a method may choose its stepper's
+// type per run (the Lie pairs: dense output or clamped steps).
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "integrators/driver.hpp"
+
+namespace rb {
+
+template <class WithStepper>
+class AdaptiveMethod final : public Integrator {
+ public:
+  AdaptiveMethod(MethodInfo info, WithStepper with_stepper)
+      : Integrator(adaptive_facts(std::move(info))), with_stepper_(std::move(with_stepper)) {}
+  RunResult integrate(const Problem& problem, const RunOptions& options) const override {
+    const Tolerances tol = tolerances_of(options);
+    const std::string controller = controller_of(this->controller(), options);
+    return with_stepper_(problem, options, tol, [&](auto& stepper) {
+      return drive_adaptive(problem, options, declared_order(), stepper, controller);
+    });
+  }
+
+ private:
+  static MethodInfo adaptive_facts(MethodInfo info) {
+    info.adaptive = true;
+    if (info.controller.empty()) info.controller = "pi";
+    return info;
+  }
+  WithStepper with_stepper_;
+};
+
+// An adaptive integrator from its facts (adaptive = true is implied, the
+// controller defaults to "pi") and a stepper maker as above.
+template <class WithStepper>
+std::unique_ptr<Integrator> adaptive_method(MethodInfo info, WithStepper with_stepper) {
+  return std::make_unique<AdaptiveMethod<WithStepper>>(std::move(info), std::move(with_stepper));
+}
+
+}  // namespace rb

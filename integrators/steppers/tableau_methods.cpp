@@ -1,0 +1,21 @@
+#include "integrators/steppers/tableau_methods.hpp"
+
+#include "integrators/controllers/controller.hpp"
+#include "integrators/steppers/flat_embedded.hpp"
+#include "integrators/steppers/munthe_kaas.hpp"
+#include "integrators/steppers/munthe_kaas_adaptive.hpp"
+#include "integrators/steppers/runge_kutta.hpp"
+
+namespace rb {
+
+std::unique_ptr<Integrator> rk_method(Tableau tableau, std::string name, const std::string& controller) {
+  if (controller == kConstantController) return std::make_unique<RungeKutta>(std::move(tableau), std::move(name));
+  return rk_adaptive(std::move(tableau), std::move(name), controller);
+}
+
+std::unique_ptr<Integrator> rkmk_method(Tableau tableau, std::string name, const std::string& controller) {
+  if (controller == kConstantController) return std::make_unique<MuntheKaas>(std::move(tableau), std::move(name));
+  return rkmk_adaptive(std::move(tableau), std::move(name), controller);
+}
+
+}  // namespace rb

@@ -1,0 +1,26 @@
+#pragma once
+// The integrators a tableau gives, by way of stepping and controller: a
+// registry line names the three parts, e.g.
+//   rkmk_method(methods::dormand_prince54(), "rkmk5", kConstantController)
+//   rkmk_method(methods::dormand_prince54(), "rkmk-dp54-adaptive", "pi")
+// - "constant": fixed steps of h with the tableau's propagating weights only
+//   (RungeKutta, MuntheKaas): no error estimate is computed;
+// - a filter ("i", "pi", "pid"; integrators/controllers/): adaptive steps on
+//   the tableau's embedded pair (rk_adaptive, rkmk_adaptive), with that
+//   filter as the method's default.
+#include <memory>
+#include <string>
+
+#include "integrators/integrator.hpp"
+#include "integrators/tableau.hpp"
+
+namespace rb {
+
+// Classical explicit RK on the flat view (family "rk", or "rk-adaptive").
+std::unique_ptr<Integrator> rk_method(Tableau tableau, std::string name, const std::string& controller);
+
+// Runge-Kutta-Munthe-Kaas on the Lie-group view (family "rkmk", or
+// "lie-adaptive").
+std::unique_ptr<Integrator> rkmk_method(Tableau tableau, std::string name, const std::string& controller);
+
+}  // namespace rb
