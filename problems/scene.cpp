@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -322,9 +323,29 @@ void check_start(const Scene& s, const RollingBall& model) {
                      "start");
 }
 
+// what scene_load_counts reports (loads may run on several threads)
+std::atomic<long> files_read{0}, models_built{0};
+
 }  // namespace
 
+struct SceneModel {
+  // what it was made of
+  std::string landscape;
+  std::map<std::string, double> params;
+  SceneBall ball;
+  double gravity;
+  RollingBall model;
+
+  bool made_of(const Scene& s) const {
+    return s.landscape == landscape && s.params == params && s.ball.radius == ball.radius &&
+           s.ball.mass == ball.mass && s.ball.inertia == ball.inertia && s.gravity == gravity;
+  }
+};
+
+SceneLoadCounts scene_load_counts() { return {files_read.load(), models_built.load()}; }
+
 RollingBall make_model(const Scene& scene) {
+  ++models_built;
   try {
     return RollingBall(Landscape::parse(scene.landscape, scene.params),
                        BallParams{scene.ball.radius, scene.ball.mass, scene.gravity, scene.ball.inertia});
@@ -362,9 +383,12 @@ FlatState start_state(const Scene& scene, const RollingBall& model) {
 
 Scene parse_scene(std::string_view json_text, const std::string& source) {
   Scene scene = read_scene(parse_json(json_text), source);
-  const RollingBall model = make_model(scene);
+  RollingBall model = make_model(scene);
   check_start(scene, model);
   make_exact(scene, model);  // throws (key "exact") when it does not fit the scene
+  scene.text = std::string(json_text);
+  scene.checked_model = std::make_shared<const SceneModel>(
+      SceneModel{scene.landscape, scene.params, scene.ball, scene.gravity, std::move(model)});
   return scene;
 }
 
@@ -374,6 +398,7 @@ Scene load_scene_file(const std::string& path) {
     throw InputError("cannot read the scene file '" + path + "'", "scene");
   std::ostringstream text;
   text << in.rdbuf();
+  ++files_read;
   return parse_scene(text.str(), path);
 }
 
@@ -399,7 +424,8 @@ Scene load_scene(const std::string& name_or_path) {
 }
 
 Problem make_problem(const Scene& scene) {
-  RollingBall model = make_model(scene);
+  const SceneModel* checked = scene.checked_model.get();
+  RollingBall model = checked != nullptr && checked->made_of(scene) ? checked->model : make_model(scene);
   const FlatState y0 = start_state(scene, model);
   auto exact = make_exact(scene, model);
   return Problem(scene.name, std::move(model), y0, scene.t_end, scene.domain, std::move(exact));

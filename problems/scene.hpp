@@ -5,6 +5,7 @@
 // "start.velocity", "landscape" with the formula's column, ...); nothing is
 // defaulted silently and nothing crashes.
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -35,6 +36,8 @@ struct SceneStart {
   Eigen::Vector4d orientation = Eigen::Vector4d(1.0, 0.0, 0.0, 0.0);
 };
 
+struct SceneModel;  // scene.cpp: the model a load compiled, and what it was made of
+
 struct Scene {
   std::string name;
   std::string description;             // empty when the file has none
@@ -48,6 +51,11 @@ struct Scene {
   double t_end = 0.0;                  // > 0
   std::string exact = "none";          // a name of exact_names() or "none"
   std::string source = "<text>";       // the file it came from, or "<text>"
+  std::string text;                    // the JSON text it was parsed from (the sweep's cache key)
+  // The model parse_scene compiled to check the start: make_problem reuses
+  // it while the landscape, params, ball and gravity are those it was made
+  // of, so that a load compiles the formula once.
+  std::shared_ptr<const SceneModel> checked_model;
 };
 
 // Parses and checks a scene. source names where the text came from (kept in
@@ -80,5 +88,14 @@ FlatState start_state(const Scene& scene, const RollingBall& model);
 
 // The problem of a scene, with its exact solution when the scene names one.
 Problem make_problem(const Scene& scene);
+
+// Scene files read and scene models built (each compiles a formula) in this
+// process so far: a load does each once, and make_problem after it neither
+// (the tests count them).
+struct SceneLoadCounts {
+  long files_read = 0;
+  long models_built = 0;
+};
+SceneLoadCounts scene_load_counts();
 
 }  // namespace rb

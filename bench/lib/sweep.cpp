@@ -4,7 +4,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <thread>
 
@@ -18,13 +17,6 @@
 namespace rb {
 
 namespace {
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // The options of a task recording the given outputs. A fixed-step method
 // lands on every output time, so outputs closer than h would shorten its
@@ -196,7 +188,7 @@ std::vector<SweepScene> prepare_scenes(const SweepSpec& spec, bool with_referenc
     const std::vector<double> timed = spec.dt_out > 0.0 ? times : std::vector<double>{scene.t_end};
     std::ostringstream content;
     content.precision(17);
-    content << read_file(scene.source) << "|t_end=" << scene.t_end;
+    content << scene.text << "|t_end=" << scene.t_end;
     ReferenceSettings settings;
     settings.cache_dir = spec.cache_dir;
     Reference reference;
