@@ -55,9 +55,6 @@ void check_embedded(const TableauCoefficients& k, const std::vector<double>& e, 
                    true, key);
 }
 
-}  // namespace
-
-namespace {
 TableauCoefficients plain(std::string name, int order, std::vector<double> a, std::vector<double> b,
                           std::vector<double> c, std::string source) {
   TableauCoefficients k;
@@ -69,6 +66,7 @@ TableauCoefficients plain(std::string name, int order, std::vector<double> a, st
   k.source = std::move(source);
   return k;
 }
+
 }  // namespace
 
 Tableau::Tableau(std::string name, int order, std::vector<double> a, std::vector<double> b, std::vector<double> c,

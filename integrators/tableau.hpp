@@ -69,6 +69,9 @@ class Tableau {
   int total_stages() const { return static_cast<int>(k_.b.size()); }
   // The FSAL stage (row of A = b exactly, c = 1), if there is one.
   std::optional<int> fsal_stage() const { return fsal_; }
+  // Whether an adaptive attempt evaluates the FSAL stage (its error weights
+  // use it: BS32, DP54); otherwise f(y_new) is one more evaluation per step.
+  bool fsal_in_attempt() const { return fsal_ && *fsal_ < attempt_stages_; }
 
   // i, j < total_stages(); b(i) = 0 for i >= stages().
   double a(int i, int j) const { return k_.a[static_cast<std::size_t>(i * total_stages() + j)]; }

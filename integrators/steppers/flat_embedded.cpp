@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "integrators/steppers/adaptive_method.hpp"
+#include "integrators/steppers/tableau_methods.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {
@@ -24,7 +25,7 @@ class FlatPairStepper {
         tol_(tol),
         y_(problem.y0()),
         attempt_(tableau.attempt_stages()),
-        fsal_in_attempt_(tableau.fsal_stage() && *tableau.fsal_stage() < attempt_) {}
+        fsal_in_attempt_(tableau.fsal_in_attempt()) {}
 
   int error_order() const { return tableau_->error_order(); }
 
@@ -94,22 +95,19 @@ class FlatPairStepper {
 }  // namespace
 
 std::unique_ptr<Integrator> rk_adaptive(Tableau tableau, std::string name, const std::string& controller) {
-  (void)filter_controller(controller);  // throws for an unknown one
+  require_embedded_pair(tableau, controller);
   const Tableau& t = tableau;
-  if (!t.has_error_estimate())
-    throw InputError("tableau '" + t.name() + "' has no embedded weights for an adaptive method", "e");
   // the flat error norm is the plain one
   if (!t.e_stretched().empty())
     throw InputError("tableau '" + t.name() + "' has a stretched error estimate, which the flat pair does not combine",
                      "e_stretched");
-  const bool fsal = t.fsal_stage() && *t.fsal_stage() < t.attempt_stages();
   MethodInfo info{.name = std::move(name),
                   .family = "rk-adaptive",
                   .declared_order = t.order(),
                   .controller = controller,
                   .description = "adaptive explicit RK on the " + t.name() + " pair (order " +
                                  std::to_string(t.order()) + ", " + std::to_string(t.attempt_stages()) + " stages" +
-                                 (fsal ? ", FSAL" : "") + ", " + controller_title(controller) +
+                                 (t.fsal_in_attempt() ? ", FSAL" : "") + ", " + controller_title(controller) +
                                  " controller by default) on the flat view; steps clamped onto the outputs"};
   return adaptive_method(std::move(info), [tableau = std::move(tableau)](const Problem& problem, const RunOptions&,
                                                                          const Tolerances& tol, auto&& drive) {

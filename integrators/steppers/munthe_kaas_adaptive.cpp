@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "integrators/steppers/adaptive_method.hpp"
-#include "problems/input_error.hpp"
+#include "integrators/steppers/tableau_methods.hpp"
 #include "problems/so3.hpp"
 
 namespace rb {
@@ -51,7 +51,7 @@ class LieStepper {
         outputs_(&outputs),
         attempt_(tableau.attempt_stages()),
         fsal_(tableau.fsal_stage().value_or(-1)),
-        fsal_in_attempt_(fsal_ >= 0 && fsal_ < attempt_) {
+        fsal_in_attempt_(tableau.fsal_in_attempt()) {
     R_ = rotation_of(problem.y0());
     z_ = z_of(problem.y0());
     const int total = tableau.total_stages();
@@ -231,7 +231,7 @@ class LieStepper {
 namespace {
 
 std::string description_of(const Tableau& p, const std::string& controller, bool use_dense) {
-  const bool fsal_in_attempt = p.fsal_stage() && *p.fsal_stage() < p.attempt_stages();
+  const bool fsal_in_attempt = p.fsal_in_attempt();
   const int per_attempt = p.attempt_stages() - 1 + (fsal_in_attempt ? 0 : 1);
   // the stages past the attempt's, less the FSAL one (evaluated for the next step)
   const int extra = p.total_stages() - p.attempt_stages() - (p.fsal_stage() && !fsal_in_attempt ? 1 : 0);
@@ -251,9 +251,7 @@ std::string description_of(const Tableau& p, const std::string& controller, bool
 
 std::unique_ptr<Integrator> rkmk_adaptive(Tableau tableau, std::string name, const std::string& controller,
                                           bool use_dense) {
-  (void)filter_controller(controller);  // throws for an unknown one
-  if (!tableau.has_error_estimate())
-    throw InputError("tableau '" + tableau.name() + "' has no embedded weights for an adaptive method", "e");
+  require_embedded_pair(tableau, controller);
   use_dense = use_dense && tableau.dense_order() > 0;
   MethodInfo info{.name = std::move(name),
                   .family = "lie-adaptive",

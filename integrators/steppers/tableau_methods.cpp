@@ -5,8 +5,15 @@
 #include "integrators/steppers/munthe_kaas.hpp"
 #include "integrators/steppers/munthe_kaas_adaptive.hpp"
 #include "integrators/steppers/runge_kutta.hpp"
+#include "problems/input_error.hpp"
 
 namespace rb {
+
+void require_embedded_pair(const Tableau& tableau, const std::string& controller) {
+  (void)filter_controller(controller);  // throws for an unknown one
+  if (!tableau.has_error_estimate())
+    throw InputError("tableau '" + tableau.name() + "' has no embedded weights for an adaptive method", "e");
+}
 
 std::unique_ptr<Integrator> rk_method(Tableau tableau, std::string name, const std::string& controller) {
   if (controller == kConstantController) return std::make_unique<RungeKutta>(std::move(tableau), std::move(name));

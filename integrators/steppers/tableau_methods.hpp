@@ -23,4 +23,9 @@ std::unique_ptr<Integrator> rk_method(Tableau tableau, std::string name, const s
 // "lie-adaptive").
 std::unique_ptr<Integrator> rkmk_method(Tableau tableau, std::string name, const std::string& controller);
 
+// What every adaptive method on a tableau needs before it is built: a known
+// filter controller and embedded weights to estimate its error with. Throws
+// InputError otherwise.
+void require_embedded_pair(const Tableau& tableau, const std::string& controller);
+
 }  // namespace rb
