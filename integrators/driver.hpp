@@ -91,8 +91,10 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
           ModelMargins margins;
           step(std::as_const(*y), *next, t, h, cost, margins);
           ++cost.validity_checks;
-          if (!problem.within_model(margins)) [[unlikely]]
-            return stop_model(problem.check_model(margins));
+          if (!problem.within_model(margins)) [[unlikely]] {
+            const Validity v = problem.check_model(margins);
+            if (v.status != Status::ok) return stop_model(v);
+          }
         } else if constexpr (writes_next) {
           step(std::as_const(*y), *next, t, h, cost);
         } else {

@@ -30,17 +30,11 @@ Validity Problem::check_step(const FlatState& y) const {
 }
 
 Validity Problem::check_model(const ModelMargins& m) const {
-  if (!std::isfinite(m.normal_force) || !std::isfinite(m.det_E) || !std::isfinite(m.mean_curvature) ||
-      !std::isfinite(m.gauss_curvature))
-    return {Status::diverged, "the landscape or its derivatives are not finite at the contact point"};
-  // r max(k1, k2) < 1 exactly when (1 - r k1) + (1 - r k2) > 0 and
-  // (1 - r k1)(1 - r k2) > 0: no square root on the way
-  const double r = model_.params().radius;
-  const double sum = 2.0 * (1.0 - r * m.mean_curvature);
-  const double product = 1.0 - 2.0 * r * m.mean_curvature + r * r * m.gauss_curvature;
-  if (!(sum > 0.0) || !(product > 0.0))
-    return {Status::curvature, describe("r * max curvature reached ", m.r_kappa_max(r))};
-  if (m.det_E <= 1e-12) return {Status::curvature, describe("E = C'^T C' is singular, det E = ", m.det_E)};
+  for (const double margin : {m.normal_force, m.det_E, m.fit_xx, m.fit_xy, m.fit_yy})
+    if (!std::isfinite(margin))
+      return {Status::diverged, "the landscape or its derivatives are not finite at the contact point"};
+  if (!m.ball_fits()) return {Status::curvature, describe("r * max curvature reached ", m.r_kappa_max())};
+  if (!m.regular()) return {Status::curvature, describe("E = C'^T C' is singular, det E = ", m.det_E)};
   if (m.normal_force <= 0.0) return {Status::lift_off, describe("the normal force fell to ", m.normal_force)};
   return {};
 }

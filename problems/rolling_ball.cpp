@@ -1,13 +1,38 @@
 #include "problems/rolling_ball.hpp"
 
 #include <algorithm>
+#include <tuple>
+#include <utility>
 
 #include "problems/so3.hpp"
 
 namespace rb {
 
-double ModelMargins::r_kappa_max(double r) const {
-  return r * (mean_curvature + std::sqrt(std::max(0.0, mean_curvature * mean_curvature - gauss_curvature)));
+namespace {
+
+// The principal curvatures (k1 >= k2, > 0 where concave) of z = f(x, y):
+// the eigenvalues of I^-1 II, first fundamental form I = [[1 + fx^2, fx fy],
+// [fx fy, 1 + fy^2]], second II = Hess f / w, w = sqrt(1 + fx^2 + fy^2).
+std::pair<double, double> principal_curvatures(const Jet2<double>& f) {
+  const double w2 = 1.0 + f.fx * f.fx + f.fy * f.fy, w = std::sqrt(w2);
+  const double E1 = 1.0 + f.fx * f.fx, F1 = f.fx * f.fy, G1 = 1.0 + f.fy * f.fy;
+  const double gauss = (f.fxx * f.fyy - f.fxy * f.fxy) / (w2 * w2);
+  const double mean = 0.5 * (f.fxx * G1 - 2.0 * f.fxy * F1 + f.fyy * E1) / (w2 * w);
+  const double disc = std::sqrt(std::max(0.0, mean * mean - gauss));
+  return {mean + disc, mean - disc};
+}
+
+}  // namespace
+
+double ModelMargins::r_kappa_max() const {
+  // the eigenvalues mu of I^-1 M solve det(M - mu I) = 0, i.e.
+  // det(I) mu^2 - b mu + det(M) = 0, and r kappa = 1 - mu
+  const double I_xx = 1.0 + slope_x * slope_x, I_xy = slope_x * slope_y, I_yy = 1.0 + slope_y * slope_y;
+  const double a = I_xx * I_yy - I_xy * I_xy;
+  const double b = fit_xx * I_yy + fit_yy * I_xx - 2.0 * fit_xy * I_xy;
+  const double c = fit_xx * fit_yy - fit_xy * fit_xy;
+  const double mu_min = (b - std::sqrt(std::max(0.0, b * b - 4.0 * a * c))) / (2.0 * a);
+  return 1.0 - mu_min;
 }
 
 RollingBall::RollingBall(Landscape landscape, BallParams params)
@@ -66,7 +91,6 @@ Derived RollingBall::derived(const FlatState& y) const {
   const double r = p_.radius, m = p_.mass, g0 = p_.gravity;
   const Mat3 R = rotation_of(y);
   const Kinematics<double> k = kinematics(R, y.data() + kOffsetV);
-  const ModelMargins margins = margins_of(k);
   const Vec3 v = momentum_of(y);
   const Vec2 alpha = contact_of(y);
   Derived d;
@@ -89,10 +113,7 @@ Derived RollingBall::derived(const FlatState& y) const {
   const Vec3 F = m * c_dd + Vec3(0.0, 0.0, m * g0);
   d.normal_force = F.dot(k.N);
 
-  const double disc = std::sqrt(std::max(0.0, margins.mean_curvature * margins.mean_curvature -
-                                                  margins.gauss_curvature));
-  d.kappa1 = margins.mean_curvature + disc;
-  d.kappa2 = margins.mean_curvature - disc;
+  std::tie(d.kappa1, d.kappa2) = principal_curvatures(k.f);
 
   d.rotation_defect = rb::rotation_defect(R);
   d.det_defect = R.determinant() - 1.0;

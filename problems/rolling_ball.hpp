@@ -31,12 +31,22 @@ struct BallParams {
 struct ModelMargins {
   // NaN until filled: margins a step failed to fill read as not finite
   static constexpr double kUnset = std::numeric_limits<double>::quiet_NaN();
-  double normal_force = kUnset;     // F . N = m g0 N_z - m r (N' alpha') . (omega x N)
-  double det_E = kUnset;            // det(C'^T C')
-  double mean_curvature = kUnset;   // (k1 + k2) / 2 of the landscape at the contact
-  double gauss_curvature = kUnset;  // k1 k2
-  // r max(k1, k2), from the two above (a square root: for messages)
-  double r_kappa_max(double r) const;
+  // E = C'^T C' counts as singular at or below this determinant
+  static constexpr double kSingularE = 1e-12;
+  double normal_force = kUnset;  // F . N = m g0 N_z - m r (N' alpha') . (omega x N)
+  double det_E = kUnset;         // det(C'^T C')
+  // The ball's fit at the contact, M = phi'^T C' = I - r II (the first
+  // fundamental form minus r times the second): positive definite exactly
+  // when r max(k1, k2) < 1, so no curvature is needed to test it.
+  double fit_xx = kUnset, fit_xy = kUnset, fit_yy = kUnset;
+  double slope_x = kUnset, slope_y = kUnset;  // fx, fy: I, for r_kappa_max
+
+  // r max(k1, k2) < 1, as one branch-free test (NaN fails it)
+  bool ball_fits() const { return (fit_xx > 0.0) & (fit_xx * fit_yy - fit_xy * fit_xy > 0.0); }
+  // the contact is regular: the ball fits and E is not singular
+  bool regular() const { return ball_fits() & (det_E > kSingularE); }
+  // r max(k1, k2) = 1 - (the smaller eigenvalue of I^-1 M), for messages
+  double r_kappa_max() const;
 };
 
 // Read access to R stored row by row in a flat state.
@@ -221,21 +231,18 @@ class RollingBall {
 };
 
 inline ModelMargins RollingBall::margins_of(const Kinematics<double>& k) const {
-  const Jet2<double>& f = k.f;
   ModelMargins m;
-  const Vec3 N_dot = k.N_d * k.alpha_dot;
   // F = m c'' - m g with c'' = r (omega' x N + omega x N_dot): the omega'
   // term is normal to N, so F . N needs no omega'
+  const Vec3 N_dot = k.N_d * k.alpha_dot;
   m.normal_force = p_.mass * (p_.gravity * k.N.z() - p_.radius * N_dot.dot(k.omega.cross(k.N)));
   m.det_E = k.det_E;
-  // principal curvatures: eigenvalues of I^-1 II, first fundamental form
-  // I = [[1 + fx^2, fx fy], [fx fy, 1 + fy^2]], second II = Hess f / w,
-  // w = sqrt(1 + fx^2 + fy^2) = 1 / N_z
-  const double inv_w = k.N.z(), inv_w2 = inv_w * inv_w;
-  const double e = f.fxx * inv_w, fm = f.fxy * inv_w, g = f.fyy * inv_w;
-  const double E1 = 1.0 + f.fx * f.fx, F1 = f.fx * f.fy, G1 = 1.0 + f.fy * f.fy;
-  m.gauss_curvature = (e * g - fm * fm) * inv_w2;
-  m.mean_curvature = 0.5 * (e * G1 - 2.0 * fm * F1 + g * E1) * inv_w2;
+  // M = phi'^T C' with phi' = [[1, 0], [0, 1], [fx, fy]]
+  m.fit_xx = k.C_d(0, 0) + k.f.fx * k.C_d(2, 0);
+  m.fit_xy = k.C_d(0, 1) + k.f.fx * k.C_d(2, 1);
+  m.fit_yy = k.C_d(1, 1) + k.f.fy * k.C_d(2, 1);
+  m.slope_x = k.f.fx;
+  m.slope_y = k.f.fy;
   return m;
 }
 

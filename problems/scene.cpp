@@ -312,9 +312,8 @@ void check_start(const Scene& s, const RollingBall& model) {
     throw InputError("the ball's radius and mass are too extreme for its inertia to be represented in doubles",
                      "ball");
   const ModelMargins m = model.margins_at(y0);
-  const double r_kappa = m.r_kappa_max(s.ball.radius);
-  if (!(r_kappa < 1.0) || !(m.det_E > 1e-12))
-    throw InputError("the contact is not regular: r * max curvature = " + num(r_kappa) +
+  if (!m.regular())
+    throw InputError("the contact is not regular: r * max curvature = " + num(m.r_kappa_max()) +
                          " (must be < 1: the ball does not fit the landscape there)",
                      "start.contact");
   if (!(m.normal_force > 0.0))

@@ -73,7 +73,7 @@ TEST(ValidityEveryStep, StopIsAtTheCrossingStep) {
     const RunResult one_more = m.integrate(p, end_only(m, (steps + 1) * h, h));
     EXPECT_EQ(one_more.status, Status::curvature) << name;
     EXPECT_DOUBLE_EQ(one_more.stop_time, r.stop_time) << name;
-    const double r_kappa = p.model().margins_at(r.final_state).r_kappa_max(0.1);
+    const double r_kappa = p.model().margins_at(r.final_state).r_kappa_max();
     EXPECT_LT(r_kappa, 1.0) << name;
     EXPECT_GT(r_kappa, 0.9) << name;
   }
