@@ -87,7 +87,9 @@ class Problem {
   // alarm (the sum of finite entries overflowing) costs a call of
   // check_step, which then clears the state.
   bool surely_within_step(const FlatState& y) const {
-    return (std::abs(y.sum()) < kHuge) & domain_.contains(y[kOffsetAlpha], y[kOffsetAlpha + 1]);
+    const bool finite = std::abs(y.sum()) < kHuge;
+    const bool inside = domain_.contains(y[kOffsetAlpha], y[kOffsetAlpha + 1]);
+    return finite & inside;
   }
   // The model's own limits from the margins of an evaluation: lift-off
   // (F . N <= 0), curvature (r max kappa >= 1 or E singular), a non-finite
