@@ -14,6 +14,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "bench/lib/trajectory_csv.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
@@ -80,7 +81,7 @@ inline RunOptions options_for(const Integrator& m, double t_end, double h, doubl
   } else {
     o.h = h;
   }
-  for (int k = 1; k * dt < t_end - 1e-9; ++k) o.output_times.push_back(k * dt);
+  o.output_times = equally_spaced_outputs(dt, t_end);
   return o;
 }
 
