@@ -191,18 +191,7 @@ TableauFile read_tableau(const json& doc, const std::string& path) {
   if (doc.contains("order")) order = integer_at(doc["order"], "order", 1, kMaxConditionOrder);
   if (doc.contains("err_order")) err_order = integer_at(doc["err_order"], "err_order", 1, kMaxConditionOrder);
   const Coefficients k = read_coefficients(doc);
-  TableauFile file{path, make_tableau(name, order, k), order.has_value(), {}, 0, {}};
-  const bool has_b_err = doc.contains("b_err") && !doc["b_err"].is_null();
-  if (has_b_err) {
-    file.b_err = numbers_at(doc["b_err"], "b_err", k.stages(), " (b has " + std::to_string(k.stages()) + ")");
-    file.err_order = check_embedded(k, file.b_err, err_order);
-  } else if (err_order) {
-    throw InputError("goes with b_err, which the file does not give", "err_order");
-  }
-  if (doc.contains("source")) {
-    if (!doc["source"].is_string()) throw InputError(std::string("must be a string, not ") + doc["source"].type_name(), "source");
-    file.source = doc["source"].get<std::string>();
-  }
+  TableauFile file{path, make_tableau(name, order, k), order.has_value()};
   // the one tableau: b propagates, e = b - b_err estimates the error
   TableauCoefficients full;
   full.name = name;
@@ -210,9 +199,19 @@ TableauFile read_tableau(const json& doc, const std::string& path) {
   full.a = k.a;
   full.b = k.b;
   full.c = k.c;
-  for (std::size_t i = 0; i < file.b_err.size(); ++i) full.e.push_back(k.b[i] - file.b_err[i]);
-  full.embedded_order = file.err_order;
-  full.source = file.source;
+  const bool has_b_err = doc.contains("b_err") && !doc["b_err"].is_null();
+  if (has_b_err) {
+    const std::vector<double> b_err =
+        numbers_at(doc["b_err"], "b_err", k.stages(), " (b has " + std::to_string(k.stages()) + ")");
+    full.embedded_order = check_embedded(k, b_err, err_order);
+    for (std::size_t i = 0; i < b_err.size(); ++i) full.e.push_back(k.b[i] - b_err[i]);
+  } else if (err_order) {
+    throw InputError("goes with b_err, which the file does not give", "err_order");
+  }
+  if (doc.contains("source")) {
+    if (!doc["source"].is_string()) throw InputError(std::string("must be a string, not ") + doc["source"].type_name(), "source");
+    full.source = doc["source"].get<std::string>();
+  }
   try {
     file.tableau = Tableau(std::move(full));
   } catch (const InputError& e) {

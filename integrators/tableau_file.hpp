@@ -17,11 +17,8 @@ struct TableauFile {
   std::string path;  // as given
   Tableau tableau;   // named after the file's name; its order is the declared one, or the highest that holds
   bool order_declared = false;
-  // the embedded weights (s entries) and the order of their conditions;
-  // empty without b_err (or with b_err null)
-  std::vector<double> b_err;
-  int err_order = 0;
-  std::string source;
+  // b_err and err_order are the tableau's e() = b - b_err and
+  // embedded_order(), the source its source()
 };
 
 // Loads and checks the tableau file at path. Throws InputError whose message
