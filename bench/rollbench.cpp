@@ -24,10 +24,12 @@
 namespace {
 
 int run_list() {
-  std::printf("integrators (name, family, declared order, adaptive):\n");
+  std::printf("integrators (name, family, declared order with the embedded one in parentheses, adaptive):\n");
   for (const auto& integrator : rb::registry()) {
     const rb::MethodInfo m = integrator->info();
-    std::printf("  %-28s %-8s %2d  %-8s %s\n", m.name.c_str(), m.family.c_str(), m.declared_order,
+    std::string order = std::to_string(m.declared_order);
+    if (m.embedded_order > 0) order += "(" + std::to_string(m.embedded_order) + ")";
+    std::printf("  %-28s %-12s %5s  %-8s %s\n", m.name.c_str(), m.family.c_str(), order.c_str(),
                 m.adaptive ? "adaptive" : "fixed", m.description.c_str());
   }
   std::printf("\nscenes (in %s):\n", RB_SCENE_DIR);

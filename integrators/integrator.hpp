@@ -38,6 +38,7 @@ struct MethodInfo {
   std::string family{};       // "rk", "rkmk", "odeint", "gsl", ...
   int declared_order = 0;
   int rotation_order = 0;     // the order in R; 0 at construction: the declared order
+  int embedded_order = 0;     // the order of an adaptive method's embedded estimate; 0: none or not stated
   bool adaptive = false;
   bool needs_jacobian = false;
   std::string controller{};   // the default step-size controller: "constant", "library", "pi", ...

@@ -67,7 +67,8 @@ const std::vector<RootedTree>& rooted_trees() {
 }
 
 OrderConditionCheck check_order_conditions(int stages, std::span<const double> a, std::span<const double> w,
-                                           std::span<const double> c, int max_order, double theta) {
+                                           std::span<const double> c, int max_order, double theta,
+                                           double tolerance) {
   const auto s = static_cast<std::size_t>(stages);
   if (stages < 1 || a.size() != s * s || w.size() != s || c.size() != s)
     throw std::invalid_argument("check_order_conditions: a must be s x s, w and c of size s");
@@ -91,7 +92,7 @@ OrderConditionCheck check_order_conditions(int stages, std::span<const double> a
     double weight = 0.0;
     for (std::size_t i = 0; i < s; ++i) weight += w[i] * phi[i];
     const double expected = std::pow(theta, tree.order) / tree.density;
-    if (!(std::abs(weight - expected) <= kOrderConditionTolerance)) {
+    if (!(std::abs(weight - expected) <= tolerance)) {
       check.satisfied_order = tree.order - 1;
       check.failure = OrderConditionFailure{tree.order, tree.name, weight, expected, weight - expected};
       return check;
@@ -112,7 +113,7 @@ OrderConditionCheck check_order_conditions(int stages, std::span<const double> a
 
 std::string describe(const OrderConditionFailure& failure) {
   char numbers[160];
-  std::snprintf(numbers, sizeof numbers, ": Phi = %.10g, 1/gamma = %.10g, residual %.3e", failure.weight,
+  std::snprintf(numbers, sizeof numbers, ": Phi = %.15g, 1/gamma = %.15g, residual %.3e", failure.weight,
                 failure.expected, failure.residual);
   return "tree " + failure.tree + " of order " + std::to_string(failure.order) + numbers;
 }

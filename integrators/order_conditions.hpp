@@ -15,8 +15,12 @@ namespace rb {
 // Rooted trees are enumerated up to this order (1205 trees; 200 up to 8).
 inline constexpr int kMaxConditionOrder = 10;
 
-// An order condition holds when |Phi(t) - 1/gamma(t)| is at most this.
+// An order condition holds when |Phi(t) - 1/gamma(t)| is at most this
+// (unless a tableau file sets its own order_tolerance: published tables
+// given to ~10 digits miss it by ~1e-10).
 inline constexpr double kOrderConditionTolerance = 1e-12;
+// The loosest tolerance a tableau may ask for: beyond it an order claim says little.
+inline constexpr double kMaxOrderTolerance = 1e-6;
 
 struct RootedTree {
   int order = 1;              // |t|, the number of vertices
@@ -51,12 +55,16 @@ struct OrderConditionCheck {
 // (1 .. kMaxConditionOrder). The stage weights Phi_i use c for the subtree
 // tau (sum_j a_ij = c_i, which a tableau checks beforehand). theta != 1
 // checks a continuous extension's weights b_i(theta) against
-// theta^|t| / gamma(t) instead (dense output). Throws std::invalid_argument
-// when the sizes do not fit.
+// theta^|t| / gamma(t) instead (dense output). A condition holds when its
+// residual is at most tolerance. Throws std::invalid_argument when the sizes
+// do not fit.
 OrderConditionCheck check_order_conditions(int stages, std::span<const double> a, std::span<const double> w,
-                                           std::span<const double> c, int max_order, double theta = 1.0);
+                                           std::span<const double> c, int max_order, double theta = 1.0,
+                                           double tolerance = kOrderConditionTolerance);
 
-// "tree [tau^2] of order 3: Phi = 0.3, 1/gamma = 0.333333, residual -3.3e-02"
+// "tree [tau^2] of order 3: Phi = 0.3, 1/gamma = 0.333333333333333, residual
+// -3.333e-02": Phi and 1/gamma to 15 digits, so that any residual above the
+// default tolerance shows in them
 // (theta^|t|/gamma for a continuous extension).
 std::string describe(const OrderConditionFailure& failure);
 

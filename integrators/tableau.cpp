@@ -32,7 +32,8 @@ void check_conditions(const TableauCoefficients& k, const std::vector<double>& w
     throw InputError("order conditions are checked up to order " + std::to_string(kMaxConditionOrder) +
                          ", the declared order is " + std::to_string(order),
                      key);
-  const OrderConditionCheck check = check_order_conditions(static_cast<int>(w.size()), k.a, w, k.c, order);
+  const OrderConditionCheck check =
+      check_order_conditions(static_cast<int>(w.size()), k.a, w, k.c, order, 1.0, k.order_tolerance);
   if (check.failure)
     throw InputError(subject + (plural ? " declare order " : " declares order ") + std::to_string(order) +
                          (plural ? " but satisfy" : " but satisfies") + " the order conditions only to order " +
@@ -76,10 +77,13 @@ Tableau::Tableau(std::string name, int order, std::vector<double> a, std::vector
 Tableau::Tableau(TableauCoefficients coefficients) : k_(std::move(coefficients)) {
   const std::size_t s = k_.b.size();
   if (s == 0 || s > static_cast<std::size_t>(kMaxStages))
-    throw InputError("a tableau needs 1 to " + std::to_string(kMaxStages) + " stages, got " + std::to_string(s), "b");
+    throw InputError("a tableau needs 1 to " + std::to_string(kMaxStages) + " stages, got " + std::to_string(s), "a");
   if (k_.a.size() != s * s) throw InputError("A must be " + std::to_string(s) + " x " + std::to_string(s), "a");
   if (k_.c.size() != s) throw InputError("c must have " + std::to_string(s) + " entries", "c");
   if (k_.order < 1) throw InputError("the declared order must be >= 1", "order");
+  if (!(k_.order_tolerance > 0.0 && k_.order_tolerance <= kMaxOrderTolerance))
+    throw InputError("must be a number > 0 and at most 1e-6 (the order conditions are checked to it)",
+                     "order_tolerance");
   check_finite(k_.a, "A", "a");
   for (std::size_t i = 0; i < s; ++i) {
     if (!std::isfinite(k_.b[i]) || !std::isfinite(k_.c[i])) throw InputError("b and c must be finite", "b");
@@ -91,7 +95,7 @@ Tableau::Tableau(TableauCoefficients coefficients) : k_(std::move(coefficients))
                          "a");
       row += k_.a[i * s + j];
     }
-    if (std::abs(row - k_.c[i]) > 1e-12)
+    if (!(std::abs(row - k_.c[i]) <= k_.order_tolerance))
       throw InputError("c[" + std::to_string(i) + "] must equal the sum of row " + std::to_string(i) + " of A", "c");
   }
   // every rooted tree up to each declared order (integrators/order_conditions.hpp)
@@ -108,7 +112,7 @@ Tableau::Tableau(TableauCoefficients coefficients) : k_(std::move(coefficients))
     for (std::size_t i = 0; i < s; ++i) {
       double at_one = 0.0;
       for (int q = 0; q < k_.dense_degree; ++q) at_one += k_.dense[i * static_cast<std::size_t>(k_.dense_degree) + q];
-      if (std::abs(at_one - k_.b[i]) > 1e-12)
+      if (!(std::abs(at_one - k_.b[i]) <= k_.order_tolerance))
         throw InputError("the dense weights at theta = 1 must equal b (stage " + std::to_string(i) + ")", "dense");
     }
   } else if (!k_.dense.empty()) {
@@ -133,7 +137,8 @@ int Tableau::error_order() const {
 }
 
 int Tableau::satisfied_order() const {
-  return check_order_conditions(total_stages(), k_.a, k_.b, k_.c, kMaxConditionOrder).satisfied_order;
+  return check_order_conditions(total_stages(), k_.a, k_.b, k_.c, kMaxConditionOrder, 1.0, k_.order_tolerance)
+      .satisfied_order;
 }
 
 }  // namespace rb

@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "integrators/order_conditions.hpp"
+
 namespace rb {
 
 // What a method file gives (integrators/methods/). Sizes: s stages, a is
@@ -44,6 +46,10 @@ struct TableauCoefficients {
   int dense_order = 0;
   int dense_degree = 0;
   std::string source;  // the citation
+  // How close each order condition, row sum (c_i = sum_j a_ij) and dense
+  // end (b_i(1) = b_i) must hold. The shipped tableaus are exact to
+  // rounding; a tableau file may loosen it for a table printed to ~10 digits.
+  double order_tolerance = kOrderConditionTolerance;
 };
 
 class Tableau {
@@ -95,7 +101,8 @@ class Tableau {
   int dense_degree() const { return k_.dense_degree; }
   const std::vector<double>& dense() const { return k_.dense; }
 
-  // The largest p <= 10 (kMaxConditionOrder) whose order conditions hold to 1e-12.
+  // The largest p <= 10 (kMaxConditionOrder) whose order conditions hold to
+  // order_tolerance (1e-12 unless the coefficients say otherwise).
   int satisfied_order() const;
 
  private:
@@ -105,7 +112,8 @@ class Tableau {
 };
 
 // The most stages any tableau may have; step loops keep this many stage
-// vectors on the stack.
-inline constexpr int kMaxStages = 16;
+// vectors on the stack. Past the 17 of Feagin's 10(8) and the 25 of his
+// 12(10), whose order conditions are checked to order 10.
+inline constexpr int kMaxStages = 32;
 
 }  // namespace rb

@@ -18,7 +18,8 @@ namespace {
 
 using json = nlohmann::json;
 
-const std::vector<std::string> kKnownKeys = {"name", "order", "c", "A", "b", "b_err", "err_order", "source", "butcher"};
+const std::vector<std::string> kKnownKeys = {"name",  "order",     "c",      "A",       "b",
+                                             "b_err", "err_order", "source", "butcher", "order_tolerance"};
 
 std::string list_of(const std::vector<std::string>& names) {
   std::string s;
@@ -109,6 +110,7 @@ bool registry_safe(const std::string& name) {
 struct Coefficients {
   std::vector<double> a, b, c;  // a: s x s row-major
   bool butcher = false;
+  double order_tolerance = kOrderConditionTolerance;
   int stages() const { return static_cast<int>(b.size()); }
   // the file's key a Tableau error about key ("a", "b", "c") belongs to
   std::string file_key(const std::string& key) const {
@@ -149,14 +151,23 @@ Coefficients read_coefficients(const json& doc) {
 // The tableau, checked by Tableau itself; without a declared order, the
 // highest whose conditions hold (order 1 is checked first: it must hold).
 Tableau make_tableau(const std::string& name, const std::optional<int>& order, const Coefficients& k) {
+  const auto plain = [&](int p) {
+    TableauCoefficients t;
+    t.name = name;
+    t.order = p;
+    t.a = k.a;
+    t.b = k.b;
+    t.c = k.c;
+    t.order_tolerance = k.order_tolerance;
+    return Tableau(std::move(t));
+  };
   try {
-    if (order) return Tableau(name, *order, k.a, k.b, k.c);
-    const Tableau first(name, 1, k.a, k.b, k.c);
-    return Tableau(name, first.satisfied_order(), k.a, k.b, k.c);
+    if (order) return plain(*order);
+    return plain(plain(1).satisfied_order());
   } catch (const InputError& e) {
     if (order || e.key() != "order") throw InputError(e.message(), k.file_key(e.key()));
     // no order was declared: the weights fail order 1 itself
-    const OrderConditionCheck check = check_order_conditions(k.stages(), k.a, k.b, k.c, 1);
+    const OrderConditionCheck check = check_order_conditions(k.stages(), k.a, k.b, k.c, 1, 1.0, k.order_tolerance);
     throw InputError("the weights satisfy no order condition (" + describe(*check.failure) + ")", k.file_key("b"));
   }
 }
@@ -165,7 +176,7 @@ Tableau make_tableau(const std::string& name, const std::optional<int>& order, c
 int check_embedded(const Coefficients& k, const std::vector<double>& b_err, const std::optional<int>& err_order) {
   if (b_err == k.b) throw InputError("equals b: the error estimate b - b_err would be zero", "b_err");
   const OrderConditionCheck check =
-      check_order_conditions(k.stages(), k.a, b_err, k.c, err_order.value_or(kMaxConditionOrder));
+      check_order_conditions(k.stages(), k.a, b_err, k.c, err_order.value_or(kMaxConditionOrder), 1.0, k.order_tolerance);
   if (err_order && check.failure)
     throw InputError("the embedded weights declare err_order " + std::to_string(*err_order) +
                          " but satisfy the order conditions only to order " + std::to_string(check.satisfied_order) +
@@ -190,7 +201,14 @@ TableauFile read_tableau(const json& doc, const std::string& path) {
   std::optional<int> order, err_order;
   if (doc.contains("order")) order = integer_at(doc["order"], "order", 1, kMaxConditionOrder);
   if (doc.contains("err_order")) err_order = integer_at(doc["err_order"], "err_order", 1, kMaxConditionOrder);
-  const Coefficients k = read_coefficients(doc);
+  Coefficients k = read_coefficients(doc);
+  if (doc.contains("order_tolerance")) {
+    k.order_tolerance = number_at(doc["order_tolerance"], "order_tolerance", "order_tolerance");
+    if (!(k.order_tolerance > 0.0 && k.order_tolerance <= kMaxOrderTolerance))
+      throw InputError("must be a number > 0 and at most 1e-6 (the order conditions are checked to it), not " +
+                           doc["order_tolerance"].dump(),
+                       "order_tolerance");
+  }
   TableauFile file{path, make_tableau(name, order, k), order.has_value()};
   // the one tableau: b propagates, e = b - b_err estimates the error
   TableauCoefficients full;
@@ -199,6 +217,7 @@ TableauFile read_tableau(const json& doc, const std::string& path) {
   full.a = k.a;
   full.b = k.b;
   full.c = k.c;
+  full.order_tolerance = k.order_tolerance;
   const bool has_b_err = doc.contains("b_err") && !doc["b_err"].is_null();
   if (has_b_err) {
     const std::vector<double> b_err =

@@ -92,6 +92,7 @@ std::unique_ptr<Integrator> exp_product_adaptive(ExpProductScheme scheme) {
   MethodInfo info{.name = scheme.name,
                   .family = scheme.family,
                   .declared_order = scheme.order,
+                  .embedded_order = scheme.embedded_order,
                   .controller = "pi",
                   .description = "adaptive " + scheme.kind + " method, order " + std::to_string(scheme.order) +
                                  " with an embedded order-" + std::to_string(scheme.embedded_order) +

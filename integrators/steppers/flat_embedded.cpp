@@ -104,6 +104,7 @@ std::unique_ptr<Integrator> rk_adaptive(Tableau tableau, std::string name, const
   MethodInfo info{.name = std::move(name),
                   .family = "rk-adaptive",
                   .declared_order = t.order(),
+                  .embedded_order = t.embedded_order(),
                   .controller = controller,
                   .description = "adaptive explicit RK on the " + t.name() + " pair (order " +
                                  std::to_string(t.order()) + ", " + std::to_string(t.attempt_stages()) + " stages" +

@@ -256,6 +256,7 @@ std::unique_ptr<Integrator> rkmk_adaptive(Tableau tableau, std::string name, con
   MethodInfo info{.name = std::move(name),
                   .family = "lie-adaptive",
                   .declared_order = tableau.order(),
+                  .embedded_order = tableau.embedded_order(),
                   .controller = controller,
                   .description = description_of(tableau, controller, use_dense)};
   return adaptive_method(std::move(info), [tableau = std::move(tableau), use_dense](const Problem& problem,

@@ -94,7 +94,7 @@ TEST(TableauCli, ABadFileExitsWithTwoNamingTheFileKeyAndTree) {
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err, "rollbench: tableau file '" + bad +
                        "': 'order': tableau 'ral3' declares order 4 but satisfies the order conditions only to order 3 "
-                       "(tree [τ³] of order 4: Phi = 0.2291666667, 1/gamma = 0.25, residual -2.083e-02)\n");
+                       "(tree [τ³] of order 4: Phi = 0.229166666666667, 1/gamma = 0.25, residual -2.083e-02)\n");
   // a name that is taken: rkmk-bs32-adaptive is built in
   const std::string clash =
       tableau_file("clash.json", std::string(kBs32).replace(std::string(kBs32).find("bs-file"), 7, "bs32")).string();

@@ -38,9 +38,9 @@ TEST(Tableau, RejectsWhatIsNotAnExplicitConsistentTableau) {
             "'c': c[1] must equal the sum of row 1 of A");
   EXPECT_EQ(error_of([] { Tableau("x", 3, {0, 0, 1, 0}, {0.5, 0.5}, {0, 1}); }),
             "'order': tableau 'x' declares order 3 but satisfies the order conditions only to order 2 (tree [τ²] of "
-            "order 3: Phi = 0.5, 1/gamma = 0.3333333333, residual 1.667e-01)");
+            "order 3: Phi = 0.5, 1/gamma = 0.333333333333333, residual 1.667e-01)");
   EXPECT_EQ(error_of([] { Tableau("x", 1, {0, 0, 0}, {1.0}, {0}); }), "'a': A must be 1 x 1");
-  EXPECT_EQ(error_of([] { Tableau("x", 1, {}, {}, {}); }), "'b': a tableau needs 1 to 16 stages, got 0");
+  EXPECT_EQ(error_of([] { Tableau("x", 1, {}, {}, {}); }), "'a': a tableau needs 1 to 32 stages, got 0");
 }
 
 // The stage groups and FSAL come from the coefficients alone: a stage whose
@@ -78,7 +78,7 @@ TEST(Tableau, EmbeddedWeightsAreCheckedToTheirOrder) {
   k.embedded_order = 3;
   EXPECT_EQ(error_of([&] { Tableau{k}; }),
             "'e': the embedded weights b - e of tableau 'bs' declare order 3 but satisfy the order conditions "
-            "only to order 2 (tree [τ²] of order 3: Phi = 0.2916666667, 1/gamma = 0.3333333333, residual "
+            "only to order 2 (tree [τ²] of order 3: Phi = 0.291666666666667, 1/gamma = 0.333333333333333, residual "
             "-4.167e-02)");
   k.embedded_order = 2;
   EXPECT_EQ(Tableau(k).error_order(), 3);
