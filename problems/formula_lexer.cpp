@@ -26,8 +26,13 @@ bool is_name(std::string_view s) {
 
 std::string quoted(std::string_view s) {
   constexpr std::size_t kShown = 32;
-  if (s.size() <= kShown) return "'" + std::string(s) + "'";
-  return "'" + std::string(s.substr(0, kShown)) + "...'";
+  // appended piece by piece: "'" + std::string(...) trips GCC 12's false
+  // -Wrestrict on the inlined insert (GCC bug 105329)
+  std::string out = "'";
+  out.append(s.substr(0, kShown));
+  if (s.size() > kShown) out.append("...");
+  out.push_back('\'');
+  return out;
 }
 
 std::string Lexer::describe(const Token& t) const {

@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${OUT:-out}"
 ./scripts/install-deps.sh
-./scripts/build.sh
+./scripts/build.sh rollbench perf_steps
 mkdir -p "$out/trajectories"
 bin=./build/release
 
