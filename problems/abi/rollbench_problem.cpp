@@ -65,7 +65,10 @@ RB_EXPORT rb_problem* rb_problem_open(const char* scene, double t_end, char* err
     write_message(error, error_size, "");
     return p;
   } catch (const std::exception& e) {
-    write_message(error, error_size, e.what());
+    // the loader's text, led by the scene where it does not name it (a JSON syntax error)
+    std::string what = e.what();
+    if (scene != nullptr && what.find(scene) == std::string::npos) what = "scene '" + std::string(scene) + "': " + what;
+    write_message(error, error_size, what);
   } catch (...) {
     write_message(error, error_size, "an unknown error while loading the scene");
   }

@@ -34,7 +34,7 @@ class ProblemLibrary(unittest.TestCase):
         try:
             with self.assertRaises(problem_lib.ProblemError) as e:
                 problem_lib.Problem(self.lib, f.name)
-            self.assertIn(os.path.basename(f.name), str(e.exception))
+            self.assertTrue(str(e.exception).startswith(f"scene '{f.name}': invalid JSON at byte "), str(e.exception))
         finally:
             os.remove(f.name)
 
@@ -86,7 +86,9 @@ class ScipyPeerScored(unittest.TestCase):
                 self.assertGreater(r["rhs_evals"], r["steps"])
                 self.assertGreater(r["wall_s"]["median"], 0.0)
                 self.assertEqual(r["timed_outputs"], 4)  # 0.25, 0.5, 0.75, 1
-                self.assertEqual(r["jacobian_evals"] > 0, r["needs_jacobian"])
+                # LSODA evaluates it only once it switches to BDF (stiff)
+                if r["peer"]["method"] != "LSODA":
+                    self.assertEqual(r["jacobian_evals"] > 0, r["needs_jacobian"])
                 self.assertGreater(r["peer"]["rhs_cost_s"], 0.0)
 
     def test_rk45_error_falls_with_the_tolerance_at_about_its_order(self):
