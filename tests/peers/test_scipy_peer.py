@@ -113,6 +113,13 @@ class ScipyPeerScored(unittest.TestCase):
         for m in scipy_peer.METHODS.values():
             self.assertIn(f"{m[0]} (adaptive)", labels)
 
+    def test_the_summary_gives_declared_and_observed_orders(self):
+        from analysis import summary
+        text = "\n".join(summary.tolerance_section(self.report))
+        fit = next(f for f in self.report["tolerance_fits"] if f["integrator"] == "scipy-rk45")
+        self.assertIn(f"| valley-sideways | scipy-rk45 | 5(4) | {fit['step_order']['slope']:.2f} ± ", text)
+        self.assertIn("| scipy-dop853 | 8(5,3) |", text)
+
     def test_a_report_of_other_end_times_is_refused(self):
         other = os.path.join(self.tmp.name, "other.json")
         with open(self.report_path) as f:
