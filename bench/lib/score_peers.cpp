@@ -1,6 +1,7 @@
 #include "bench/lib/score_peers.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,12 @@ namespace {
 using json = nlohmann::json;
 
 json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+std::string short_number(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", v);
+  return buffer;
+}
 
 // Reads the fields of the peer file, refusing what is missing or of the
 // wrong type with the key ("runs[3].rtol") and the file.
@@ -145,15 +152,15 @@ void check_same_grid(const json& report, const std::string& into, const SweepSce
     throw InputError("the report '" + into + "' has no runs on scene '" + s.scene.name + "' the peer solved", "into");
   const double t_end = reference->value("t_end", kNaN);
   if (t_end != s.scene.t_end)
-    throw InputError("the peer solved scene '" + s.scene.name + "' to t_end = " + std::to_string(s.scene.t_end) +
-                         ", the report '" + into + "' to " + std::to_string(t_end) + " (give the peer the run's t_end)",
+    throw InputError("the peer solved scene '" + s.scene.name + "' to t_end = " + short_number(s.scene.t_end) +
+                         ", the report '" + into + "' to " + short_number(t_end) + " (give the peer the run's t_end)",
                      "into");
   const json& o = report.at("options");
   const double report_spacing =
       o.value("dt_out", json()).is_number() ? o["dt_out"].get<double>() : o.value("error_dt", 0.25);
   if (std::abs(report_spacing - spacing) > 1e-12 * spacing)
-    throw InputError("the peer's output grid is every " + std::to_string(spacing) + ", the report '" + into +
-                         "''s every " + std::to_string(report_spacing),
+    throw InputError("the peer's output grid is every " + short_number(spacing) + ", the report '" + into +
+                         "' has every " + short_number(report_spacing),
                      "into");
 }
 

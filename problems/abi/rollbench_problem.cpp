@@ -55,10 +55,14 @@ int code_of(rb_problem* p, const rb::Validity& v) {
 RB_EXPORT unsigned rb_problem_abi_version(void) { return ROLLBENCH_PROBLEM_ABI_VERSION; }
 
 RB_EXPORT rb_problem* rb_problem_open(const char* scene, double t_end, char* error, size_t error_size) {
+  if (scene == nullptr || !(t_end >= 0.0 && std::isfinite(t_end))) {
+    write_message(error, error_size,
+                  scene == nullptr
+                      ? rb::InputError("no scene given (a shipped scene's name or a scene file's path)", "scene").what()
+                      : rb::InputError("the end time must be a finite number >= 0 (0: the scene's)", "t_end").what());
+    return nullptr;
+  }
   try {
-    if (scene == nullptr) throw rb::InputError("no scene given (a shipped scene's name or a scene file's path)", "scene");
-    if (!(t_end >= 0.0 && std::isfinite(t_end)))
-      throw rb::InputError("the end time must be a finite number >= 0 (0: the scene's)", "t_end");
     rb::Scene s = rb::load_scene(scene);
     if (t_end > 0.0) s.t_end = std::min(s.t_end, t_end);  // as `rollbench run --t-end`
     rb_problem* p = new rb_problem{rb::make_problem(s), s.name, {}, 0, 0};
@@ -67,7 +71,7 @@ RB_EXPORT rb_problem* rb_problem_open(const char* scene, double t_end, char* err
   } catch (const std::exception& e) {
     // the loader's text, led by the scene where it does not name it (a JSON syntax error)
     std::string what = e.what();
-    if (scene != nullptr && what.find(scene) == std::string::npos) what = "scene '" + std::string(scene) + "': " + what;
+    if (what.find(scene) == std::string::npos) what = "scene '" + std::string(scene) + "': " + what;
     write_message(error, error_size, what);
   } catch (...) {
     write_message(error, error_size, "an unknown error while loading the scene");

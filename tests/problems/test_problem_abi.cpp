@@ -83,23 +83,26 @@ class ProblemAbi : public ::testing::Test {
 // A state around the start with a random orientation, perturbed off SO(3)
 // as a flat method drifts, and momentum and contact spread wide enough that
 // some states are beyond the model's limits.
-FlatState random_state(const Problem& problem, std::mt19937& rng) {
+FlatState random_state(const Problem& problem, std::mt19937& rng, const Vec2& centre) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   Mat3 R = so3_exp(Vec3(u(rng), u(rng), u(rng)) * 2.0);
   for (int k = 0; k < 9; ++k) R(k / 3, k % 3) += 1e-3 * u(rng);
   const double scale = problem.model().params().mass * std::pow(problem.model().params().radius, 2);
   const Vec3 v = momentum_of(problem.y0()) + scale * Vec3(u(rng), u(rng), u(rng)) * 40.0;
-  return make_flat(R, v, contact_of(problem.y0()) + Vec2(u(rng), u(rng)) * 0.5);
+  return make_flat(R, v, centre + Vec2(u(rng), u(rng)) * 0.5);
 }
 
 TEST_F(ProblemAbi, RhsJacobianAndCodesAreTheSuitesBitForBit) {
   EXPECT_EQ(lib.abi_version(), ROLLBENCH_PROBLEM_ABI_VERSION);
   std::mt19937 rng(27);
-  // homogeneous and anisotropic balls, smooth and curved landscapes
-  for (const char* scene : {"valley-sideways", "chaplygin-valley", "gaussian-hills", "bowl-3d"}) {
+  // homogeneous and anisotropic balls, smooth and curved landscapes, and a
+  // fast ball around a narrow crest, where most states are beyond lift-off
+  const std::string crest = RB_TEST_DATA "/stop-lift-off.json";
+  for (const std::string& scene : {std::string("valley-sideways"), std::string("chaplygin-valley"),
+                                   std::string("gaussian-hills"), std::string("bowl-3d"), crest}) {
     SCOPED_TRACE(scene);
     char error[256] = "unset";
-    rb_problem* p = lib.open(scene, 0.0, error, sizeof error);
+    rb_problem* p = lib.open(scene.c_str(), 0.0, error, sizeof error);
     ASSERT_NE(p, nullptr) << error;
     EXPECT_STREQ(error, "");
     const Problem problem = make_problem(load_scene(scene));
@@ -111,7 +114,7 @@ TEST_F(ProblemAbi, RhsJacobianAndCodesAreTheSuitesBitForBit) {
     EXPECT_EQ(y0, problem.y0());
     int beyond = 0;
     for (int i = 0; i < 200; ++i) {
-      const FlatState y = random_state(problem, rng);
+      const FlatState y = random_state(problem, rng, scene == crest ? Vec2::Zero() : contact_of(problem.y0()));
       FlatState dy_abi, dy_suite;
       ModelMargins margins;
       const int code = lib.rhs(p, 0.5, y.data(), dy_abi.data());
@@ -131,8 +134,7 @@ TEST_F(ProblemAbi, RhsJacobianAndCodesAreTheSuitesBitForBit) {
     EXPECT_EQ(lib.jacobian_evals(p), 200);
     lib.reset_counters(p);
     EXPECT_EQ(lib.rhs_evals(p), 0);
-    // the spread reaches past the limits on the curved landscapes
-    if (std::string(scene) == "gaussian-hills") EXPECT_GT(beyond, 0);
+    if (scene == crest) EXPECT_GT(beyond, 10);  // 36 of 200 with this seed
     lib.close(p);
   }
 }
