@@ -177,10 +177,15 @@ TEST_F(ProblemAbi, LiftOffAndDomainAreCodesWithTheSuitesReasons) {
   lib.close(nullptr);
 }
 
-TEST_F(ProblemAbi, TEndReplacesTheScenes) {
+// as `rollbench run --t-end`: at most the scene's (chaplygin-valley's is 5)
+TEST_F(ProblemAbi, TEndShortensTheScenes) {
   rb_problem* p = lib.open("chaplygin-valley", 1.5, nullptr, 0);
   ASSERT_NE(p, nullptr);
   EXPECT_EQ(lib.t_end(p), 1.5);
+  lib.close(p);
+  p = lib.open("chaplygin-valley", 50.0, nullptr, 0);
+  ASSERT_NE(p, nullptr);
+  EXPECT_EQ(lib.t_end(p), 5.0);
   lib.close(p);
   char error[256];
   EXPECT_EQ(lib.open("chaplygin-valley", -1.0, error, sizeof error), nullptr);
