@@ -20,6 +20,7 @@ FAMILY_COLOURS = {
     "lie-adaptive": "#ff7f0e", # orange
     "projection": "#8c564b",   # brown
     "quaternion": "#e377c2",   # pink
+    "scipy": "#0fa3b1",        # cyan: SciPy solve_ivp, a peer (docs/peers.md)
 }
 FALLBACK_COLOURS = ["#17becf", "#bcbd22", "#7f7f7f", "#393b79", "#637939", "#843c39", "#7b4173"]
 UNKNOWN_FAMILY_COLOUR = "#555555"

@@ -70,10 +70,25 @@ def tolerance_section(report):
         return lines + ["The report has no `tolerance_fits` (no adaptive runs).", ""]
     lines += ["Least-squares fit of log10 worst error against log10 tolerance per adaptive method, as the "
               "runner made it: slope 1 with a small residual means the tolerance means what it says; the "
-              "intercept is log10 of the error at tolerance 1.", ""]
-    rows = [[f["scene"], f["integrator"], md.fmt(rp.num(f.get("slope"))), md.fmt(rp.num(f.get("intercept"))),
+              "intercept is log10 of the error at tolerance 1. \"step order\": the slope of log10 worst error "
+              "against log10 mean step (t_end / steps), the observed order beside the declared one.", ""]
+    declared = {}
+    for r in report["runs"]:
+        if r.get("adaptive"):
+            text = (r.get("peer") or {}).get("declared_order_text")
+            declared[(r["scene"], r["integrator"])] = text or str(r.get("declared_order", "—"))
+
+    def step_order(f):
+        s = f.get("step_order") or {}
+        slope, ci = rp.num(s.get("slope")), rp.num(s.get("ci95"))
+        if not math.isfinite(slope):
+            return "—"
+        return f"{slope:.2f} ± {ci:.2f}" if math.isfinite(ci) else f"{slope:.2f}"
+    rows = [[f["scene"], f["integrator"], declared.get((f["scene"], f["integrator"]), "—"), step_order(f),
+             md.fmt(rp.num(f.get("slope"))), md.fmt(rp.num(f.get("intercept"))),
              md.fmt(rp.num(f.get("residual"))), f.get("points", "—")] for f in fits]
-    return lines + md.table(["scene", "integrator", "slope", "intercept", "residual", "points"], rows) + [""]
+    return lines + md.table(["scene", "integrator", "declared", "step order", "slope", "intercept", "residual",
+                             "points"], rows) + [""]
 
 
 def stability_section(report):

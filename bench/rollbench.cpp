@@ -12,6 +12,7 @@
 #include "bench/lib/drift.hpp"
 #include "bench/lib/report.hpp"
 #include "bench/lib/score.hpp"
+#include "bench/lib/score_peers.hpp"
 #include "bench/lib/stepper_option.hpp"
 #include "bench/lib/tableau_option.hpp"
 #include "bench/lib/trajectory_csv.hpp"
@@ -227,12 +228,25 @@ int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_
 }
 
 struct ScoreArgs {
-  std::string scene, csv, out, cache;
+  std::string scene, csv, out, cache, peers, into;
   std::optional<double> t_end, dt_out;
 };
 
 // A trajectory from another program scored against the suite's reference.
 int run_score(const ScoreArgs& a) {
+  if (!a.peers.empty()) {  // another program's solves as report runs
+    if (!a.scene.empty() || a.t_end || a.dt_out)
+      throw rb::InputError("takes no scene, trajectory, --t-end or --dt-out: the peer file names them", "peers");
+    if (a.out.empty()) throw rb::InputError("the report needs --out FILE", "out");
+    const nlohmann::json report = rb::score_peers(a.peers, a.into, a.cache);
+    write_json(report, a.out);
+    std::printf("%s", rb::summary_table(report).c_str());
+    std::printf("report with the runs of %s written to %s\n", a.peers.c_str(), a.out.c_str());
+    return 0;
+  }
+  if (!a.into.empty()) throw rb::InputError("goes with --peers", "into");
+  if (a.scene.empty() || a.csv.empty())
+    throw rb::InputError("expected SCENE TRAJECTORY.csv, or --peers PEERS.json", "score");
   std::ifstream csv(a.csv);
   if (!csv) throw rb::InputError("cannot open '" + a.csv + "' for reading", "trajectory");
   rb::ScoreOptions options;
@@ -336,9 +350,12 @@ int main(int argc, char** argv) {
   ScoreArgs score;
   CLI::App* score_cmd = app.add_subcommand(
       "score", "accuracy and drift of another program's trajectory CSV against the suite's reference");
-  score_cmd->add_option("scene", score.scene, "a shipped scene's name or a scene JSON file")->required();
-  score_cmd->add_option("trajectory", score.csv, "the trajectory CSV (the columns `rollbench trajectory` writes)")
-      ->required();
+  score_cmd->add_option("scene", score.scene, "a shipped scene's name or a scene JSON file");
+  score_cmd->add_option("trajectory", score.csv, "the trajectory CSV (the columns `rollbench trajectory` writes)");
+  score_cmd->add_option("--peers", score.peers,
+                        "a peer file (docs/formats.md, \"Peer runs\"): another program's solves, written as report "
+                        "runs to --out");
+  score_cmd->add_option("--into", score.into, "with --peers: the `rollbench run` report to add the runs to");
   score_cmd->add_option("--t-end", score.t_end, "end time, as the run's (default: the scene's t_end)");
   score_cmd->add_option("--dt-out", score.dt_out,
                         "spacing of the output times, as the run's --dt-out (default: the runner's 0.25)");

@@ -15,3 +15,14 @@ if(NOT RB_SANITIZE)
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/tests/slurm/test_slurm.sh $<TARGET_FILE:rollbench>)
   set_tests_properties(slurm.cluster PROPERTIES TIMEOUT 600 SKIP_RETURN_CODE 77)
 endif()
+
+# the SciPy peer (docs/peers.md): the problem library through ctypes, scored by
+# this build's rollbench. Not in the sanitizer build: Python cannot load a
+# library built with AddressSanitizer (the C++ test of the library runs there).
+if(NOT RB_SANITIZE)
+  add_test(NAME analysis.scipy_peer
+           COMMAND ${RB_PYTHON3} -m unittest tests.peers.test_scipy_peer
+           WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
+  set_tests_properties(analysis.scipy_peer PROPERTIES ENVIRONMENT
+    "RB_ROLLBENCH=$<TARGET_FILE:rollbench>;RB_PROBLEM_LIB=$<TARGET_FILE:rollbench_problem>")
+endif()

@@ -100,8 +100,6 @@ json errors_json(const RunErrors& e, const std::string& reference_kind) {
           {"floor", e.floor}, {"below_floor", e.below_floor}, {"points", e.points}};
 }
 
-namespace {
-
 json run_json(const RunRecord& r, const std::string& reference_kind) {
   std::vector<double> samples = r.wall_samples;
   const Mat3 R = rotation_of(r.final_state);
@@ -130,6 +128,8 @@ json run_json(const RunRecord& r, const std::string& reference_kind) {
             {"contact", {r.final_state[kOffsetAlpha], r.final_state[kOffsetAlpha + 1]}},
             {"R", {{R(0, 0), R(0, 1), R(0, 2)}, {R(1, 0), R(1, 1), R(1, 2)}, {R(2, 0), R(2, 1), R(2, 2)}}}}}};
 }
+
+namespace {
 
 // What each timed call contains, the same for every method.
 json timed_call(const SweepSpec& spec) {
@@ -202,9 +202,21 @@ json fit_tolerances(const json& runs) {
       if (tol > 0.0 && e > 0.0) log_tol.push_back(std::log10(tol)), log_error.push_back(std::log10(e));
     }
     const LineFit line = fit_line(log_tol, log_error);
+    // the observed order of a method whose step it picks itself: the slope
+    // of log error against log mean step, t_end / steps, over the same runs
+    std::vector<double> log_step, log_step_error;
+    for (const json* r : groups.members.at(key)) {
+      const double e = as_number(r->at("error").at("worst")), steps = as_number(r->at("steps"));
+      const double t = as_number(r->at("stop_time"));
+      if (e > 0.0 && steps > 0.0 && t > 0.0)
+        log_step.push_back(std::log10(t / steps)), log_step_error.push_back(std::log10(e));
+    }
+    const LineFit step = fit_line(log_step, log_step_error);
     fits.push_back({{"scene", key.first}, {"integrator", key.second}, {"slope", number(line.slope)},
                     {"intercept", number(line.intercept)}, {"residual", number(line.residual)},
-                    {"ci95", number(line.slope_ci95)}, {"points", line.points}});
+                    {"ci95", number(line.slope_ci95)}, {"points", line.points},
+                    {"step_order", {{"slope", number(step.slope)}, {"ci95", number(step.slope_ci95)},
+                                    {"residual", number(step.residual)}, {"points", step.points}}}});
   }
   return fits;
 }

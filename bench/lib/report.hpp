@@ -21,6 +21,9 @@ nlohmann::json make_report(const SweepSpec& spec, const std::vector<SweepScene>&
 // and what lies below it, the points measured, and the reference's kind.
 nlohmann::json errors_json(const RunErrors& errors, const std::string& reference_kind);
 
+// A run's entry of "runs" (FORMATS.md, "A run").
+nlohmann::json run_json(const RunRecord& record, const std::string& reference_kind);
+
 // The "orders" entries for the runs of a report: per (scene, integrator) of a
 // fixed-step method, the slope of log error on log h per component with its
 // 95 % interval, a verdict per component (order_verdict: "as declared",
@@ -30,7 +33,9 @@ nlohmann::json fit_orders(const nlohmann::json& runs, const nlohmann::json& refe
 
 // The "tolerance_fits" entries: per (scene, integrator) of an adaptive
 // method, the least-squares line of log10 worst error (at t_end) against
-// log10 tolerance over its runs that reached t_end.
+// log10 tolerance over its runs that reached t_end, and step_order: the
+// slope of log10 worst error against log10 of the mean step (stop_time /
+// steps), the observed order of a method that picks its own steps.
 nlohmann::json fit_tolerances(const nlohmann::json& runs);
 
 // Joins shard reports: runs, references and stability records in sweep

@@ -137,27 +137,11 @@ bool finite_state(const std::vector<double>& row) {
   return true;
 }
 
-}  // namespace
-
-json score_trajectory(const std::string& scene_name, std::istream& csv, const std::string& csv_name,
-                      const ScoreOptions& options) {
-  if (!(options.t_end >= 0.0 && std::isfinite(options.t_end)))
-    throw InputError("the end time must be a finite number > 0", "t-end");
-  if (!(options.dt_out >= 0.0 && std::isfinite(options.dt_out)))
-    throw InputError("the output spacing must be a finite number > 0", "dt-out");
-  // the scene, its grid and its reference exactly as `rollbench run` makes them
-  SweepSpec spec;
-  spec.scenes = {scene_name};
-  spec.t_end = options.t_end;
-  spec.dt_out = options.dt_out;
-  spec.cache_dir = options.cache_dir;
-  CsvRows rows(csv, csv_name);  // the header first: a wrong file fails before the reference is computed
-  const std::vector<SweepScene> scenes = prepare_scenes(spec);
-  const SweepScene& s = scenes.front();
-  const double spacing = spec.dt_out > 0.0 ? spec.dt_out : spec.error_dt;
-
-  RunResult run;  // the trajectory as if a method had run: its outputs on the grid
-  std::string status = "ok", message;
+ScoredTrajectory score_rows(const SweepScene& s, double spacing, CsvRows& rows) {
+  ScoredTrajectory scored;
+  RunResult& run = scored.run;  // the trajectory as if a method had run: its outputs on the grid
+  std::string& status = scored.status;
+  std::string& message = scored.message;
   std::vector<double> row;
   bool first = true;
   while (rows.next(row)) {
@@ -188,10 +172,39 @@ json score_trajectory(const std::string& scene_name, std::istream& csv, const st
               "), before t_end = " + short_number(s.times.back());
   }
   if (status != "ok") run.status = Status::error;  // not ok: no errors, as for a run that stopped early
+  measure_end(s, run, scored.record);
+  measure_grid(s, run, scored.record);
+  return scored;
+}
 
-  RunRecord r;
-  measure_end(s, run, r);
-  measure_grid(s, run, r);
+}  // namespace
+
+ScoredTrajectory score_rows(const SweepScene& scene, double spacing, std::istream& csv, const std::string& csv_name) {
+  CsvRows rows(csv, csv_name);
+  return score_rows(scene, spacing, rows);
+}
+
+json score_trajectory(const std::string& scene_name, std::istream& csv, const std::string& csv_name,
+                      const ScoreOptions& options) {
+  if (!(options.t_end >= 0.0 && std::isfinite(options.t_end)))
+    throw InputError("the end time must be a finite number > 0", "t-end");
+  if (!(options.dt_out >= 0.0 && std::isfinite(options.dt_out)))
+    throw InputError("the output spacing must be a finite number > 0", "dt-out");
+  // the scene, its grid and its reference exactly as `rollbench run` makes them
+  SweepSpec spec;
+  spec.scenes = {scene_name};
+  spec.t_end = options.t_end;
+  spec.dt_out = options.dt_out;
+  spec.cache_dir = options.cache_dir;
+  CsvRows rows(csv, csv_name);  // the header first: a wrong file fails before the reference is computed
+  const std::vector<SweepScene> scenes = prepare_scenes(spec);
+  const SweepScene& s = scenes.front();
+  const double spacing = spec.dt_out > 0.0 ? spec.dt_out : spec.error_dt;
+  const ScoredTrajectory scored = score_rows(s, spacing, rows);
+  const std::string& status = scored.status;
+  const std::string& message = scored.message;
+  const RunResult& run = scored.run;
+  const RunRecord& r = scored.record;
   const std::string& kind = s.reference.kind;
   return {
       {"schema", kScoreSchema},

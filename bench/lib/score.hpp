@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "bench/lib/sweep.hpp"
+
 namespace rb {
 
 inline constexpr const char* kScoreSchema = "rollbench.score/1";
@@ -30,5 +32,17 @@ struct ScoreOptions {
 // results, with drift up to there and no errors, as in the report.
 nlohmann::json score_trajectory(const std::string& scene, std::istream& csv, const std::string& csv_name,
                                 const ScoreOptions& options);
+
+// One trajectory CSV scored on a prepared scene (its grid every spacing):
+// status "ok", "incomplete" or "diverged" with the message, the outputs read,
+// and the errors and drift in record (error, error_max, energy and rotation
+// drift), as score_trajectory measures them. Throws InputError as it does.
+struct ScoredTrajectory {
+  std::string status = "ok";
+  std::string message;
+  RunResult run;
+  RunRecord record;
+};
+ScoredTrajectory score_rows(const SweepScene& scene, double spacing, std::istream& csv, const std::string& csv_name);
 
 }  // namespace rb

@@ -183,7 +183,10 @@ class SummaryOfSyntheticReport(unittest.TestCase):
     def test_tolerance_fits_are_shown(self):
         rows = md.parse_table(self.markdown, "## Tolerance proportionality")
         self.assertEqual(len(rows), len(syn.SCENES) * len(syn.ADAPTIVE))
-        for scene, name, slope, intercept, residual, points in rows:
+        declared = {(r["scene"], r["integrator"]): str(r["declared_order"]) for r in self.report["runs"]}
+        for scene, name, order, step_order, slope, intercept, residual, points in rows:
+            self.assertEqual(order, declared[(scene, name)])
+            self.assertEqual(step_order, "—")  # the synthetic fits have none
             a, s = syn.adaptive_law(scene, name, "worst")
             self.assertEqual(slope, md.fmt(s))
             self.assertTrue(math.isclose(float(intercept), math.log10(a), rel_tol=REL))

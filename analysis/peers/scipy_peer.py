@@ -1,0 +1,210 @@
+"""SciPy's solve_ivp as a peer of rollbench's methods (docs/peers.md).
+
+Runs RK45, DOP853, Radau, BDF and LSODA (the implicit ones with the exact
+Jacobian) on the scene's flat right-hand side from librollbench_problem.so,
+over a ladder of tolerances (rtol = atol = tol, as rollbench's adaptive
+runs), and writes a peer file (docs/formats.md, "Peer runs") with one
+trajectory CSV per solve, for `rollbench score --peers` to turn into report
+runs.
+
+Timing: each solve is timed with time.perf_counter around solve_ivp and the
+evaluation of its dense output at the output times, Python's overhead
+included; the cost of the bare right-hand side and Jacobian through ctypes is
+measured apart (rhs_cost) so that readers can subtract it.
+
+    /usr/bin/python3 -m analysis.peers.scipy_peer --scene chaplygin-valley --t-end 2 --out out/peers
+"""
+import argparse
+import json
+import math
+import os
+import platform
+import sys
+import time
+
+import numpy as np
+import scipy
+from scipy.integrate import solve_ivp
+
+from analysis.peers import problem_lib
+
+# name: (report name, declared order, the order as SciPy's documentation states it, uses the Jacobian)
+METHODS = {
+    "RK45": ("scipy-rk45", 5, "5(4)", False),      # Dormand–Prince, steps with the order-5 solution
+    "DOP853": ("scipy-dop853", 8, "8(5,3)", False),  # Dormand–Prince 8, 5th- and 3rd-order estimates
+    "Radau": ("scipy-radau", 5, "5", True),          # Radau IIA, 3 stages
+    "BDF": ("scipy-bdf", 5, "variable 1–5", True),   # NDF/BDF; the declared order is the highest
+    "LSODA": ("scipy-lsoda", 12, "variable: Adams 1–12, BDF 1–5", True),  # switched by stiffness
+}
+DEFAULT_TOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10)
+ERROR_DT = 0.25  # the runner's error grid (rollbench run without --dt-out)
+TIMING = ("wall_s: time.perf_counter around solve_ivp (dense_output=True) and the evaluation of its dense "
+          "output at the output times, per timed repeat, Python's overhead included (the right-hand side is "
+          "called through ctypes); rhs_cost: the bare rhs and Jacobian through the same ctypes wrapper at the "
+          "start, timed apart, so that rhs_evals x python_s_per_call is the evaluations' share to subtract")
+STATUS_OF_CODE = {"diverged", "lift-off", "curvature", "domain"}
+
+
+def output_times(spacing, t_end):
+    """The runner's output grid: k spacing (k = 1, 2, ...) below t_end, then t_end (bench/lib/trajectory_csv.cpp)."""
+    count = math.floor(t_end / spacing * (1.0 - 1e-12))
+    times = [k * spacing for k in range(1, count + 1)]
+    if not times or times[-1] < t_end:
+        times.append(t_end)
+    return np.array(times)
+
+
+def csv_header(problem):
+    c, d = problem.components, problem.derived_names
+    return ",".join(["t"] + c[12:14] + d[0:6] + c[0:9] + d[6:10])
+
+
+def csv_row(problem, t, y):
+    d = problem.derived(y)
+    values = [t, y[12], y[13], *d[0:6], *y[0:9], *d[6:10]]
+    return ",".join("%.17g" % v for v in values)
+
+
+def measure_rhs_cost(problem, calls):
+    """Seconds per call: the bare ctypes call, the wrapper solve_ivp calls, and the Jacobian's wrapper."""
+    y = problem.y0.copy()
+    dy = np.empty(problem_lib.STATE_SIZE)
+    problem.rhs(0.0, y), problem.jacobian(0.0, y)  # warm: first calls pay for lazy binding
+    f, h, yp, dyp = problem._rhs, problem.handle, y.ctypes.data, dy.ctypes.data
+    start = time.perf_counter()
+    for _ in range(calls):
+        f(h, 0.0, yp, dyp)
+    bare = (time.perf_counter() - start) / calls
+    start = time.perf_counter()
+    for _ in range(calls):
+        problem.rhs(0.0, y)
+    wrapped = (time.perf_counter() - start) / calls
+    jac_calls = max(1, calls // 10)
+    start = time.perf_counter()
+    for _ in range(jac_calls):
+        problem.jacobian(0.0, y)
+    jac = (time.perf_counter() - start) / jac_calls
+    problem.reset()
+    return {"scene": None, "calls": calls, "ctypes_s_per_call": bare, "python_s_per_call": wrapped,
+            "jacobian_calls": jac_calls, "jacobian_s_per_call": jac}
+
+
+def solve(problem, method, tol, times):
+    """One solve to the last output time: (solution at the outputs or None, solve_ivp's result)."""
+    jac = {"jac": problem.jacobian} if METHODS[method][3] else {}  # the explicit methods warn on any jac
+    sol = solve_ivp(problem.rhs, (0.0, times[-1]), problem.y0, method=method, rtol=tol, atol=tol,
+                    dense_output=True, **jac)
+    reached = times[times <= sol.t[-1] * (1 + 1e-14)]
+    outputs = sol.sol(reached) if sol.sol is not None and len(reached) else np.empty((problem_lib.STATE_SIZE, 0))
+    return outputs, sol
+
+
+def failure_of(sol):
+    """(status, message) of a solve that did not get to the end."""
+    if sol.success:
+        return "ok", ""
+    status = "step-underflow" if "step size" in sol.message.lower() else "error"
+    return status, f"solve_ivp: {sol.message} (t = {sol.t[-1]:.6g})"
+
+
+def run_one(problem, method, tol, times, repeats, folder, stem):
+    """Solves once for the counts and the trajectory, then `repeats` more times for the timing."""
+    name, order, order_text, uses_jacobian = METHODS[method]
+    problem.reset()
+    outputs, sol = solve(problem, method, tol, times)
+    rhs_evals, jacobian_evals = problem.counts()
+    stages_beyond = problem.stages_beyond
+    status, message = failure_of(sol)
+    # every output state through the model's checks, as the suite checks each accepted state
+    rows, checks = [], 1
+    stop_time = float(sol.t[-1])
+    for k in range(outputs.shape[1]):
+        checks += 1
+        verdict, reason = problem.check(outputs[:, k])
+        if verdict != "ok":
+            status, message, stop_time = verdict, f"{reason} (output t = {times[k]:.6g})", float(times[k])
+            break
+        rows.append(csv_row(problem, float(times[k]), outputs[:, k]))
+    wall = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        solve(problem, method, tol, times)
+        wall.append(time.perf_counter() - start)
+    problem.reset()
+    path = os.path.join("trajectories", f"{stem}.csv")
+    with open(os.path.join(folder, path), "w") as out:
+        out.write(csv_header(problem) + "\n" + csv_row(problem, 0.0, problem.y0) + "\n")
+        out.writelines(r + "\n" for r in rows)
+    return {"integrator": name, "family": "scipy", "method": method, "declared_order": order,
+            "declared_order_text": order_text, "needs_jacobian": uses_jacobian, "rtol": tol, "atol": tol,
+            "status": status, "message": message, "stop_time": stop_time, "trajectory": path,
+            "wall_s": wall, "steps": len(sol.t) - 1, "rhs_evals": rhs_evals, "jacobian_evals": jacobian_evals,
+            "lu_decompositions": int(sol.nlu), "validity_checks": checks,
+            "options": {"stages_beyond_model": stages_beyond, "nfev": int(sol.nfev), "njev": int(sol.njev)}}
+
+
+def run_peers(library, scenes, methods, tols, t_end, dt_out, repeats, rhs_calls, folder, progress=print):
+    os.makedirs(os.path.join(folder, "trajectories"), exist_ok=True)
+    lib = problem_lib.load_library(library)
+    runs, costs, ends = [], [], set()
+    for scene in scenes:
+        with problem_lib.Problem(lib, scene, t_end or 0.0) as problem:
+            ends.add(problem.t_end)
+            times = output_times(dt_out or ERROR_DT, problem.t_end)
+            cost = measure_rhs_cost(problem, rhs_calls)
+            cost["scene"] = scene
+            costs.append(cost)
+            for method in methods:
+                for tol in tols:
+                    stem = f"{problem.name}-{METHODS[method][0]}-{tol:.0e}"
+                    run = run_one(problem, method, tol, times, repeats, folder, stem)
+                    run["scene"] = scene
+                    runs.append(run)
+                    progress(f"scipy_peer: {problem.name} {method} tol {tol:.0e}: {run['status']}, "
+                             f"{run['rhs_evals']} rhs, {np.median(run['wall_s']) * 1e3:.1f} ms")
+    peers = {"schema": "rollbench.peers/1", "peer": "scipy",
+             "versions": {"python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__},
+             "library": os.path.abspath(library), "abi_version": problem_lib.ABI_VERSION,
+             "t_end": t_end if t_end else None, "dt_out": dt_out if dt_out else None,
+             "timing": TIMING, "rhs_cost": costs, "runs": runs}
+    path = os.path.join(folder, "peers.json")
+    with open(path, "w") as out:
+        json.dump(peers, out, indent=1)
+    return path
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--library", default=problem_lib.DEFAULT_LIBRARY, help="librollbench_problem.so")
+    ap.add_argument("--scene", action="append", required=True, help="a shipped scene or a scene file (repeatable)")
+    ap.add_argument("--methods", default=",".join(METHODS), help="comma-separated solve_ivp methods")
+    ap.add_argument("--tol", default=",".join(f"{t:g}" for t in DEFAULT_TOLS), help="comma-separated tolerances")
+    ap.add_argument("--t-end", type=float, default=0.0, help="end time, as rollbench run --t-end (0: the scene's)")
+    ap.add_argument("--dt-out", type=float, default=0.0, help="output spacing, as rollbench run --dt-out "
+                                                              "(0: the runner's error grid, 0.25)")
+    ap.add_argument("--repeats", type=int, default=3, help="timed solves per run")
+    ap.add_argument("--rhs-calls", type=int, default=20000, help="bare rhs calls timed for rhs_cost")
+    ap.add_argument("--out", required=True, help="folder for peers.json and trajectories/")
+    a = ap.parse_args(argv)
+    methods = a.methods.split(",")
+    unknown = [m for m in methods if m not in METHODS]
+    if unknown:
+        ap.error(f"unknown method {unknown[0]!r}; solve_ivp's are {', '.join(METHODS)}")
+    try:
+        tols = [float(t) for t in a.tol.split(",")]
+    except ValueError:
+        ap.error(f"--tol: expected comma-separated numbers, got {a.tol!r}")
+    if not all(t > 0 for t in tols) or a.repeats < 1 or a.rhs_calls < 1 or a.t_end < 0 or a.dt_out < 0:
+        ap.error("tolerances, --repeats and --rhs-calls must be > 0, --t-end and --dt-out >= 0")
+    try:
+        path = run_peers(a.library, a.scene, methods, tols, a.t_end, a.dt_out, a.repeats, a.rhs_calls, a.out,
+                         progress=lambda line: print(line, file=sys.stderr))
+    except problem_lib.ProblemError as e:
+        print(f"scipy_peer: {e}", file=sys.stderr)
+        return 2
+    print(f"peer file written to {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
