@@ -5,6 +5,7 @@
 //
 // Integrators are immutable and stateless between runs, so one instance may
 // run on many threads at once; all run state lives in integrate().
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -75,6 +76,10 @@ struct RunResult {
   FlatState final_state = FlatState::Zero();  // the last valid state
   Cost cost;
   Trajectory output;       // every output up to the stop
+  // Seconds the integration took as measured where it ran, for a run made
+  // in a child process (integrators/steppers/isolated_run.hpp), so that the
+  // fork is not timed; NaN where the caller times the call itself.
+  double solve_seconds = std::numeric_limits<double>::quiet_NaN();
 
   // Ends the run early: why, and the last valid state and its time.
   RunResult& stopped(Status why, const std::string& reason, const FlatState& last_valid, double t_valid) {

@@ -16,6 +16,7 @@
 
 #include "bench/lib/order_fit.hpp"
 #include "problems/input_error.hpp"
+#include "problems/utf8.hpp"
 
 namespace rb {
 
@@ -82,7 +83,10 @@ std::string utc_now() {
 
 json options_of(const SweepSpec& s) {
   const StabilitySpec& st = s.stability;
-  return {{"preset", s.preset}, {"scenes", s.scenes}, {"integrators", s.integrators}, {"h", s.hs}, {"tol", s.tols},
+  // scene paths as the user typed them: any bytes, text here
+  std::vector<std::string> scenes;
+  for (const std::string& scene : s.scenes) scenes.push_back(valid_utf8(scene));
+  return {{"preset", s.preset}, {"scenes", scenes}, {"integrators", s.integrators}, {"h", s.hs}, {"tol", s.tols},
           {"t_end", number(s.t_end > 0 ? s.t_end : kNaN)}, {"dt_out", number(s.dt_out > 0 ? s.dt_out : kNaN)}, {"error_dt", s.error_dt}, {"repeats", s.repeats},
           {"repeat_budget_s", s.repeat_budget_s}, {"jobs", s.jobs}, {"max_steps", s.max_steps},
           {"controller", s.controller.empty() ? json(nullptr) : json(s.controller)},
