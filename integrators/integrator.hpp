@@ -28,6 +28,12 @@ struct RunOptions {
   // empty: the method's own (MethodInfo::controller). Fixed-step methods
   // and libraries' steppers keep theirs.
   std::string controller;
+  // The call is a timed repeat: a run made in a child process (a --stepper
+  // plug-in, integrators/steppers/isolated_run.hpp) integrates once untimed
+  // in the child before the run it times and returns, so that its time is
+  // as warm as an in-process repeat's (no first-touch copies of the
+  // parent's pages in it). Every other method ignores it.
+  bool warm_up = false;
 };
 
 // The facts of a method, in one place: what `rollbench list` shows, what the

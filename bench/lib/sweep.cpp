@@ -325,6 +325,7 @@ std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepS
   std::vector<const Integrator*> methods;
   for (const SweepTask& task : tasks) {
     opts.push_back(timed_options(scenes[task.scene], task, spec.max_steps));
+    opts.back().warm_up = true;  // an isolated plug-in warms up in its own process
     methods.push_back(&find_integrator(task.integrator));
   }
   std::vector<double> spent(tasks.size(), 0.0);

@@ -111,10 +111,11 @@ bool get_result(Reader& in, RunResult& r) {
 }
 
 // The child's whole answer: the result, or the exception body() threw.
-std::string child_answer(const std::function<RunResult()>& body) {
+std::string child_answer(const std::function<RunResult()>& body, bool warm_up) {
   Writer w;
   w.put(kMagic);
   try {
+    if (warm_up) (void)body();
     const auto start = std::chrono::steady_clock::now();
     RunResult result = body();
     result.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -135,7 +136,7 @@ std::string child_answer(const std::function<RunResult()>& body) {
   return w.bytes;
 }
 
-[[noreturn]] void run_child(const std::function<RunResult()>& body, int out) {
+[[noreturn]] void run_child(const std::function<RunResult()>& body, int out, bool warm_up) {
   // nothing but the answer's pipe stays open: a sibling child must not
   // hold another run's pipe (its parent would wait for that child's end)
   if (out > 3) ::close_range(3, static_cast<unsigned>(out) - 1, 0);
@@ -144,7 +145,7 @@ std::string child_answer(const std::function<RunResult()>& body) {
   ::setrlimit(RLIMIT_CORE, &no_core);  // a crash is a status, not a core file
   int code = 0;
   try {
-    const std::string answer = child_answer(body);
+    const std::string answer = child_answer(body, warm_up);
     for (std::size_t written = 0; written < answer.size();) {
       const ssize_t n = ::write(out, answer.data() + written, answer.size() - written);
       if (n < 0 && errno == EINTR) continue;
@@ -176,7 +177,7 @@ std::string seconds_text(double seconds) {
 }  // namespace
 
 RunResult run_isolated(const std::function<RunResult()>& body, const std::string& who, double wall_limit_s,
-                       const FlatState& start) {
+                       const FlatState& start, bool warm_up) {
   int pipe_ends[2];
   if (::pipe2(pipe_ends, O_CLOEXEC) != 0)
     throw std::runtime_error(who + ": cannot make a pipe for an isolated run: " + std::strerror(errno));
@@ -188,7 +189,7 @@ RunResult run_isolated(const std::function<RunResult()>& body, const std::string
     ::close(pipe_ends[1]);
     throw std::runtime_error(who + ": cannot fork an isolated run: " + std::strerror(error));
   }
-  if (pid == 0) run_child(body, pipe_ends[1]);
+  if (pid == 0) run_child(body, pipe_ends[1], warm_up);
   ::close(pipe_ends[1]);
 
   using clock = std::chrono::steady_clock;

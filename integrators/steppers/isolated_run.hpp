@@ -8,7 +8,10 @@
 //
 // What is timed: the child measures its own integration (steady clock,
 // right around body()) and returns it as RunResult::solve_seconds, so that
-// fork, pipe and result transfer are not charged to the method.
+// fork, pipe and result transfer are not charged to the method; with
+// warm_up it first runs body() once untimed, since a forked child's first
+// run also pays for copying every page it writes (about 60 us a run, see
+// docs/design.md).
 //
 // The child runs only body() and ends with _exit: no atexit handlers, no
 // destructors of the parent's objects, no stdio flush of the parent's
@@ -32,7 +35,8 @@ inline constexpr double kDefaultIsolatedWallLimit = 300.0;
 // run reports as its last valid one (the child's own is lost with it).
 // An exception thrown by body is thrown again here: an InputError with
 // its key, anything else as a std::runtime_error with its what().
+// warm_up: run body once untimed in the child first (RunOptions::warm_up).
 RunResult run_isolated(const std::function<RunResult()>& body, const std::string& who, double wall_limit_s,
-                       const FlatState& start);
+                       const FlatState& start, bool warm_up = false);
 
 }  // namespace rb

@@ -55,7 +55,7 @@ class PluginStepper final : public Integrator {
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
     if (isolation_.mode == PluginIsolation::Mode::none) return integrate_here(problem, options);
     return run_isolated([&] { return integrate_here(problem, options); }, "stepper '" + name() + "'",
-                        isolation_.wall_limit_s, problem.y0());
+                        isolation_.wall_limit_s, problem.y0(), options.warm_up);
   }
 
  private:
