@@ -143,6 +143,10 @@ std::string child_answer(const std::function<RunResult()>& body, bool warm_up) {
   ::close_range(static_cast<unsigned>(out) + 1, ~0U, 0);
   const rlimit no_core{0, 0};
   ::setrlimit(RLIMIT_CORE, &no_core);  // a crash is a status, not a core file
+  // the default action for the signals of a crash, whatever handler the
+  // parent has (a sanitizer's turns SIGSEGV into exit code 1): the parent
+  // names the signal
+  for (const int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTRAP, SIGSYS}) std::signal(signal, SIG_DFL);
   int code = 0;
   try {
     const std::string answer = child_answer(body, warm_up);

@@ -13,7 +13,10 @@
 // run also pays for copying every page it writes (about 60 us a run, see
 // docs/design.md).
 //
-// The child runs only body() and ends with _exit: no atexit handlers, no
+// The child restores the default action of the crash signals (SIGSEGV,
+// SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTRAP, SIGSYS: a sanitizer's handler
+// would turn them into an exit code), sets no core file, and
+// runs only body() and ends with _exit: no atexit handlers, no
 // destructors of the parent's objects, no stdio flush of the parent's
 // buffers. The parent flushes stdout and stderr before fork so nothing is
 // written twice. Forking from a threaded sweep is safe for this body: it
