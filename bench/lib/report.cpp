@@ -144,7 +144,9 @@ json timed_call(const SweepSpec& spec) {
           {"contains",
            "one integrate() call from t = 0 to t_end recording the outputs above: every step with its rhs "
            "evaluations, the model's validity check of the start and of each accepted state (validity_checks), "
-           "the finiteness and domain check of each recorded output, and copying the recorded states; not the untimed warm-up call before it, not the error measurement"},
+           "the finiteness and domain check of each recorded output, and copying the recorded states; not the untimed warm-up call before it, not the error measurement; "
+           "for a --stepper plug-in run in its own process, the time the child measured around the integration after an "
+           "untimed warm-up run in it (not the fork, the pipe or the warm-up)"},
           {"error_max", "from an untimed run recording every multiple of error_dt (dt_out when given) up to t_end; "
                         "error_max_run.same_steps says whether it took the timed run's steps (fixed-step and "
                         "dense-output methods do; methods that land on each output do not)"}};
