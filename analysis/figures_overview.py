@@ -71,7 +71,8 @@ def _failure_panel(ax, runs, palette):
             # a count only where its segment is wide enough to hold it
             if c and status != "ok" and c / widest > 0.04:
                 ax.text(left[i] + c / 2, i, str(c), ha="center", va="center", fontsize=7,
-                        color="white" if status in ("diverged", "error", "step-underflow", "max-steps") else "black")
+                        color="white" if status in ("diverged", "error", "step-underflow", "max-steps", "crashed",
+                                                    "timeout") else "black")
         left += counts
     ax.set_yticks(range(len(names)), names, fontsize=8)
     _colour_ticklabels(ax, names, palette)

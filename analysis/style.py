@@ -31,7 +31,10 @@ LINESTYLES = ["-", "--", "-.", ":"]
 # status colours for failure bars; "ok" is drawn light so failures stand out
 STATUS_COLOURS = {
     "ok": "#d9d9d9", "diverged": "#d62728", "lift-off": "#ff7f0e", "curvature": "#bcbd22",
-    "domain": "#17becf", "step-underflow": "#9467bd", "max-steps": "#8c564b", "error": "#000000",
+    "domain": "#17becf", "step-underflow": "#9467bd", "max-steps": "#8c564b",
+    # an isolated plug-in's run that died, was killed at its limit, or left SO(3)
+    "crashed": "#7f0000", "timeout": "#525252", "off-group": "#e377c2",
+    "error": "#000000",
 }
 
 

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "bench/lib/drift.hpp"
+#include "bench/lib/output_file.hpp"
 #include "bench/lib/report.hpp"
 #include "bench/lib/score.hpp"
 #include "bench/lib/score_peers.hpp"
@@ -74,12 +75,11 @@ int run_trajectory(const TrajectoryArgs& a) {
   const double dt_out = std::isnan(a.dt_out) ? std::max(0.01, a.h) : a.dt_out;
   options.output_times = rb::equally_spaced_outputs(dt_out, options.t_end);
 
-  std::ofstream out(a.out);
-  if (!out) throw rb::InputError("cannot open '" + a.out + "' for writing", "out");
+  // the CSV replaces a.out only once it is whole (bench/lib/output_file.hpp)
+  rb::OutputFile out(a.out, "out");
   const rb::RunResult run = integrator.integrate(problem, options);
-  rb::write_trajectory_csv(out, problem, run.output);
-  out.close();
-  if (!out) throw rb::InputError("could not write '" + a.out + "'", "out");
+  rb::write_trajectory_csv(out.stream(), problem, run.output);
+  out.commit();
 
   // a summary on standard output: how the run went and what it cost
   const rb::Drift drift = rb::largest_drift(problem, run.output);
@@ -140,12 +140,9 @@ int run_landscape(const LandscapeArgs& a) {
   if (!(box.xmin < box.xmax && box.ymin < box.ymax))
     throw rb::InputError("expected xmin < xmax and ymin < ymax", "domain");
   const rb::RollingBall model = rb::make_model(scene);
-  std::ofstream file;
-  if (!a.out.empty()) {
-    file.open(a.out);
-    if (!file) throw rb::InputError("cannot open '" + a.out + "' for writing", "out");
-  }
-  std::ostream& out = a.out.empty() ? std::cout : file;
+  std::optional<rb::OutputFile> file;
+  if (!a.out.empty()) file.emplace(a.out, "out");
+  std::ostream& out = file ? file->stream() : std::cout;
   const int nx = static_cast<int>(grid[0]), ny = static_cast<int>(grid[1]);
   out << "x,y,z\n";
   char line[96];
@@ -158,6 +155,7 @@ int run_landscape(const LandscapeArgs& a) {
       out << line;
     }
   }
+  if (file) file->commit();
   out.flush();
   if (!out) throw rb::InputError("could not write the grid", "out");
   return 0;
@@ -179,12 +177,14 @@ std::vector<std::string> split_names(const std::string& text) {
   return names;
 }
 
-void write_json(const nlohmann::json& j, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw rb::InputError("cannot open '" + path + "' for writing", "out");
-  out << j.dump(1) << '\n';
-  if (!out) throw rb::InputError("could not write '" + path + "'", "out");
+// Text from outside is made valid UTF-8 where it enters (problems/utf8.hpp);
+// the dump replaces what might still slip through, so that no report is
+// lost to a strict dump. The file replaces path only once it is whole.
+std::string json_text(const nlohmann::json& j) {
+  return j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + '\n';
 }
+
+void write_json(const nlohmann::json& j, const std::string& path) { rb::write_output_file(path, json_text(j), "out"); }
 
 int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_methods) {
   rb::SweepSpec spec = rb::preset(a.preset);
@@ -260,7 +260,7 @@ int run_score(const ScoreArgs& a) {
   options.dt_out = a.dt_out.value_or(0.0);
   const nlohmann::json score = rb::score_trajectory(a.scene, csv, a.csv, options);
   if (a.out.empty()) {
-    std::printf("%s\n", score.dump(1).c_str());
+    std::printf("%s", json_text(score).c_str());
   } else {
     write_json(score, a.out);
     std::printf("score of %s on %s written to %s\n", a.csv.c_str(), a.scene.c_str(), a.out.c_str());
@@ -294,6 +294,17 @@ int main(int argc, char** argv) {
   // --stepper PATH.so (repeatable): a stepper library (integrators/plugin/rollbench_stepper.h)
   std::vector<std::string> steppers;
   const char* stepper_help = "a stepper library built against integrators/plugin/rollbench_stepper.h (repeatable)";
+  // how plug-in runs are isolated (integrators/steppers/isolated_run.hpp)
+  std::string stepper_isolation;
+  double stepper_timeout = std::nan("");  // NaN: not given
+  auto add_isolation_options = [&](CLI::App* command) {
+    command->add_option("--stepper-isolation", stepper_isolation,
+                        "process (default: each --stepper run in a child process; a crash or hang is a status) or "
+                        "none (in-process)");
+    command->add_option("--stepper-timeout", stepper_timeout,
+                        "wall-clock limit in seconds of one isolated --stepper run (default 300); past it the run "
+                        "is killed: status timeout");
+  };
   list->add_option("--stepper", steppers, stepper_help);
   add_tableau_option(list);
 
@@ -312,6 +323,7 @@ int main(int argc, char** argv) {
   trajectory->add_option("--controller", traj.controller, controller_help);
   trajectory->add_option("--out", traj.out, "the CSV file to write")->required();
   trajectory->add_option("--stepper", steppers, stepper_help);
+  add_isolation_options(trajectory);
   add_tableau_option(trajectory);
 
   LandscapeArgs land;
@@ -339,6 +351,7 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--no-stability", run.no_stability, "skip the stability study of the preset");
   run_cmd->add_option("--out", run.out, "the report to write")->required();
   run_cmd->add_option("--stepper", steppers, stepper_help);
+  add_isolation_options(run_cmd);
   add_tableau_option(run_cmd);
 
   std::vector<std::string> merge_inputs;
@@ -372,7 +385,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    rb::register_plugin_steppers(steppers);
+    rb::register_plugin_steppers(steppers, rb::plugin_isolation(stepper_isolation, stepper_timeout));
     const std::vector<std::string> tableau_methods = rb::add_tableau_files(tableau_files);
     if (app.got_subcommand("list")) return run_list();
     if (app.got_subcommand("trajectory")) return run_trajectory(traj);

@@ -8,9 +8,16 @@
  *   RB_VARIANT_BAD_NAME    declares a name with a space
  *   RB_VARIANT_FAILS       returns error code 7 with a reason from t >= 0.5
  *   RB_VARIANT_NAN         writes a NaN state from t >= 0.5
+ *   RB_VARIANT_BAD_UTF8    fails like FAILS with a reason holding the bytes 0xFF 0xFE
+ *   RB_VARIANT_CRASH       dereferences a null pointer (SIGSEGV) from t >= 0.5
+ *   RB_VARIANT_ABORT       calls abort() (SIGABRT) from t >= 0.5
+ *   RB_VARIANT_HANG        spins forever from t >= 0.5
+ *   RB_VARIANT_OFF_GROUP   a Lie-view exponential Euler step that, from
+ *                          t >= 0.5, scales R by 1.1 (R^T R = 1.21 I)
  */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "integrators/plugin/rollbench_stepper.h"
 
@@ -24,8 +31,16 @@
 #define RB_ORDER 2
 #endif
 
+#ifdef RB_VARIANT_OFF_GROUP
+#define RB_VIEW ROLLBENCH_VIEW_LIE
+#undef RB_ORDER
+#define RB_ORDER 1
+#else
+#define RB_VIEW ROLLBENCH_VIEW_FLAT
+#endif
+
 static const struct rollbench_stepper_info info = {RB_VARIANT_NAME, "plugin", RB_ORDER,
-                                                   "a broken stepper for the tests", ROLLBENCH_VIEW_FLAT};
+                                                   "a broken stepper for the tests", RB_VIEW};
 
 unsigned rollbench_stepper_abi_version(void) {
 #ifdef RB_VARIANT_BAD_ABI
@@ -37,7 +52,27 @@ unsigned rollbench_stepper_abi_version(void) {
 
 const struct rollbench_stepper_info* rollbench_stepper_info(void) { return &info; }
 
-#ifndef RB_VARIANT_NO_STEP
+#ifdef RB_VARIANT_OFF_GROUP
+/* examples/lie_euler_stepper.c, spoiled from t >= 0.5 */
+int rollbench_stepper_step(const struct rollbench_problem* problem, double t, double h,
+                           const double y[ROLLBENCH_FLAT_SIZE], double y_next[ROLLBENCH_FLAT_SIZE], char* message,
+                           size_t message_size) {
+  const double* R = y;
+  const double* z = y + 9;
+  double omega[3], dz[ROLLBENCH_Z_SIZE], u[3], E[9];
+  const double scale = t >= 0.5 ? 1.1 : 1.0;
+  (void)message;
+  (void)message_size;
+  problem->lie_rhs(problem->context, R, z, omega, dz);
+  for (int i = 0; i < 3; ++i) u[i] = h * omega[i];
+  problem->so3_exp(problem->context, u, E);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      y_next[3 * i + j] = scale * (E[3 * i + 0] * R[0 + j] + E[3 * i + 1] * R[3 + j] + E[3 * i + 2] * R[6 + j]);
+  for (int i = 0; i < ROLLBENCH_Z_SIZE; ++i) y_next[9 + i] = z[i] + h * dz[i];
+  return 0;
+}
+#elif !defined(RB_VARIANT_NO_STEP)
 int rollbench_stepper_step(const struct rollbench_problem* problem, double t, double h,
                            const double y[ROLLBENCH_FLAT_SIZE], double y_next[ROLLBENCH_FLAT_SIZE], char* message,
                            size_t message_size) {
@@ -48,9 +83,30 @@ int rollbench_stepper_step(const struct rollbench_problem* problem, double t, do
     snprintf(message, message_size, "the linear solve did not converge (residual %.1e)", 1e-3);
     return 7;
   }
+#elif defined(RB_VARIANT_BAD_UTF8)
+  if (t >= 0.5) {
+    snprintf(message, message_size, "bad bytes \xff\xfe in the reason");
+    return 5;
+  }
 #else
   (void)message;
   (void)message_size;
+#endif
+#ifdef RB_VARIANT_CRASH
+  if (t >= 0.5) {
+    volatile int* volatile nowhere = NULL;
+    *nowhere = 1;
+  }
+#endif
+#ifdef RB_VARIANT_ABORT
+  if (t >= 0.5) abort();
+#endif
+#ifdef RB_VARIANT_HANG
+  if (t >= 0.5) {
+    volatile int spin = 1;
+    while (spin) {
+    }
+  }
 #endif
   problem->flat_rhs(problem->context, y, k);
   for (int i = 0; i < ROLLBENCH_FLAT_SIZE; ++i) mid[i] = y[i] + (0.5 * h) * k[i];

@@ -5,6 +5,7 @@
 //
 // Integrators are immutable and stateless between runs, so one instance may
 // run on many threads at once; all run state lives in integrate().
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,6 +28,12 @@ struct RunOptions {
   // empty: the method's own (MethodInfo::controller). Fixed-step methods
   // and libraries' steppers keep theirs.
   std::string controller;
+  // The call is a timed repeat: a run made in a child process (a --stepper
+  // plug-in, integrators/steppers/isolated_run.hpp) integrates once untimed
+  // in the child before the run it times and returns, so that its time is
+  // as warm as an in-process repeat's (no first-touch copies of the
+  // parent's pages in it). Every other method ignores it.
+  bool warm_up = false;
 };
 
 // The facts of a method, in one place: what `rollbench list` shows, what the
@@ -76,6 +83,10 @@ struct RunResult {
   FlatState final_state = FlatState::Zero();  // the last valid state
   Cost cost;
   Trajectory output;       // every output up to the stop
+  // Seconds the integration took as measured where it ran, for a run made
+  // in a child process (integrators/steppers/isolated_run.hpp), so that the
+  // fork is not timed; NaN where the caller times the call itself.
+  double solve_seconds = std::numeric_limits<double>::quiet_NaN();
 
   // Ends the run early: why, and the last valid state and its time.
   RunResult& stopped(Status why, const std::string& reason, const FlatState& last_valid, double t_valid) {

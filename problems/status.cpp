@@ -11,6 +11,9 @@ std::string_view status_name(Status status) {
     case Status::domain: return "domain";
     case Status::step_underflow: return "step-underflow";
     case Status::max_steps: return "max-steps";
+    case Status::crashed: return "crashed";
+    case Status::timeout: return "timeout";
+    case Status::off_group: return "off-group";
     case Status::error: return "error";
   }
   return "error";

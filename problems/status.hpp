@@ -12,6 +12,9 @@ enum class Status {
   domain,          // the contact point left the scene's domain
   step_underflow,  // an adaptive method's step fell below what time can resolve
   max_steps,       // the run hit its step budget
+  crashed,         // an isolated plug-in's child process died (a signal, an exit without a result)
+  timeout,         // an isolated plug-in's run passed its wall-clock limit and was killed
+  off_group,       // a Lie-view plug-in returned R off SO(3): ||R^T R - I||_F > 1e-6
   error,           // a library error code or exception; see the message
 };
 

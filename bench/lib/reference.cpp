@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "bench/lib/output_file.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
 #include "problems/so3.hpp"
@@ -175,8 +176,13 @@ Reference make_reference(const Problem& problem, const std::string& scene_conten
   if (!cache_file.empty()) {
     std::error_code ec;
     fs::create_directories(cache_file.parent_path(), ec);
-    std::ofstream out(cache_file);
-    if (out) out << to_json(ref).dump();
+    // whole or not at all, also when shards write the same entry at once;
+    // a cache that cannot be written is only slower next time
+    try {
+      write_output_file(cache_file.string(), to_json(ref).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
+                        "cache");
+    } catch (const InputError&) {
+    }
   }
   return ref;
 }

@@ -16,6 +16,7 @@
 
 #include "bench/lib/order_fit.hpp"
 #include "problems/input_error.hpp"
+#include "problems/utf8.hpp"
 
 namespace rb {
 
@@ -82,7 +83,10 @@ std::string utc_now() {
 
 json options_of(const SweepSpec& s) {
   const StabilitySpec& st = s.stability;
-  return {{"preset", s.preset}, {"scenes", s.scenes}, {"integrators", s.integrators}, {"h", s.hs}, {"tol", s.tols},
+  // scene paths as the user typed them: any bytes, text here
+  std::vector<std::string> scenes;
+  for (const std::string& scene : s.scenes) scenes.push_back(valid_utf8(scene));
+  return {{"preset", s.preset}, {"scenes", scenes}, {"integrators", s.integrators}, {"h", s.hs}, {"tol", s.tols},
           {"t_end", number(s.t_end > 0 ? s.t_end : kNaN)}, {"dt_out", number(s.dt_out > 0 ? s.dt_out : kNaN)}, {"error_dt", s.error_dt}, {"repeats", s.repeats},
           {"repeat_budget_s", s.repeat_budget_s}, {"jobs", s.jobs}, {"max_steps", s.max_steps},
           {"controller", s.controller.empty() ? json(nullptr) : json(s.controller)},
@@ -140,7 +144,9 @@ json timed_call(const SweepSpec& spec) {
           {"contains",
            "one integrate() call from t = 0 to t_end recording the outputs above: every step with its rhs "
            "evaluations, the model's validity check of the start and of each accepted state (validity_checks), "
-           "the finiteness and domain check of each recorded output, and copying the recorded states; not the untimed warm-up call before it, not the error measurement"},
+           "the finiteness and domain check of each recorded output, and copying the recorded states; not the untimed warm-up call before it, not the error measurement; "
+           "for a --stepper plug-in run in its own process, the time the child measured around the integration after an "
+           "untimed warm-up run in it (not the fork, the pipe or the warm-up)"},
           {"error_max", "from an untimed run recording every multiple of error_dt (dt_out when given) up to t_end; "
                         "error_max_run.same_steps says whether it took the timed run's steps (fixed-step and "
                         "dense-output methods do; methods that land on each output do not)"}};

@@ -7,6 +7,7 @@
 #include "bench/lib/report.hpp"
 #include "bench/lib/sweep.hpp"
 #include "bench/lib/trajectory_csv.hpp"
+#include "problems/utf8.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {
@@ -209,7 +210,7 @@ json score_trajectory(const std::string& scene_name, std::istream& csv, const st
   return {
       {"schema", kScoreSchema},
       {"scene", s.scene.name},
-      {"trajectory", csv_name},
+      {"trajectory", valid_utf8(csv_name)},  // a path: any bytes
       {"status", status},
       {"message", message},
       {"stop_time", run.stop_time},

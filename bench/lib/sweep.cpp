@@ -13,6 +13,7 @@
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
 #include "problems/so3.hpp"
+#include "problems/utf8.hpp"
 
 namespace rb {
 
@@ -145,11 +146,15 @@ RunResult integrate_safely(const Integrator& m, const Problem& problem, const Ru
     // an option the method cannot take is a failed run, not a failed sweep
     RunResult run;
     run.status = Status::error;
-    run.message = e.what();
+    run.message = valid_utf8(e.what());  // an exception's text may quote a path: any bytes
     run.final_state = problem.y0();
     return run;
   }
 }
+
+// A run whose process died or was killed (an isolated plug-in's): its
+// state and cost are lost, and running it again would crash or hang again.
+bool was_lost(Status status) { return status == Status::crashed || status == Status::timeout; }
 
 double largest_omega(const Reference& reference) {
   double w = 0.0;
@@ -246,7 +251,7 @@ RunRecord run_task(const SweepScene& s, const SweepTask& task, long max_steps) {
   r.controller = controller_of(m.controller(), timed);
   const RunResult run = integrate_safely(m, s.problem, timed);
   r.status = run.status;
-  r.message = run.message;
+  r.message = valid_utf8(run.message);  // as every text the report takes from a method
   r.stop_time = run.stop_time;
   r.cost = run.cost;
   r.timed_outputs = output_count(s.problem, timed);
@@ -254,6 +259,7 @@ RunRecord run_task(const SweepScene& s, const SweepTask& task, long max_steps) {
   r.final_energy = s.problem.model().derived(run.final_state).energy;
   measure_end(s, run, r);
   const RunOptions grid = options_of(s, task, max_steps, s.times);
+  if (was_lost(run.status)) return r;  // its state is lost: nothing to measure, and no second crash or wait
   if (grid.output_times == timed.output_times) {
     measure_grid(s, run, r);
     r.error_max_source = {true, run.cost.steps};
@@ -319,6 +325,7 @@ std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepS
   std::vector<const Integrator*> methods;
   for (const SweepTask& task : tasks) {
     opts.push_back(timed_options(scenes[task.scene], task, spec.max_steps));
+    opts.back().warm_up = true;  // an isolated plug-in warms up in its own process
     methods.push_back(&find_integrator(task.integrator));
   }
   std::vector<double> spent(tasks.size(), 0.0);
@@ -327,18 +334,21 @@ std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepS
   for (int k = 0; k < spec.repeats; ++k) {
     for (std::size_t i = 0; i < tasks.size(); ++i) {
       if (k > 0 && spent[i] >= spec.repeat_budget_s) continue;
+      if (was_lost(records[i].status)) continue;  // not timed: wall_s has no samples
       const Problem& problem = scenes[tasks[i].scene].problem;
+      // the seconds an isolated run measured in its own process, else NaN
       auto call = [&] {
         try {
-          methods[i]->integrate(problem, opts[i]);
+          return methods[i]->integrate(problem, opts[i]).solve_seconds;
         } catch (const std::exception&) {
-          // already recorded as a failed run
+          return kNaN;  // already recorded as a failed run
         }
       };
       call();
       const auto t0 = clock::now();
-      call();
-      const double dt = std::chrono::duration<double>(clock::now() - t0).count();
+      const double solve_seconds = call();
+      const double wall = std::chrono::duration<double>(clock::now() - t0).count();
+      const double dt = std::isfinite(solve_seconds) ? solve_seconds : wall;
       records[i].wall_samples.push_back(dt);
       spent[i] += dt;
       ++timed;

@@ -9,6 +9,8 @@
 #include "integrators/fixed_step.hpp"
 #include "problems/input_error.hpp"
 #include "problems/so3.hpp"
+#include "problems/state.hpp"
+#include "problems/utf8.hpp"
 
 namespace rb {
 
@@ -47,9 +49,17 @@ void so3_dexpinv_callback(void* c, const double* u, const double* w, double* out
 
 class PluginStepper final : public Integrator {
  public:
-  PluginStepper(MethodInfo facts, StepFn step) : Integrator(std::move(facts)), step_(step) {}
+  PluginStepper(MethodInfo facts, StepFn step, bool lie_view, PluginIsolation isolation)
+      : Integrator(std::move(facts)), step_(step), lie_view_(lie_view), isolation_(isolation) {}
 
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
+    if (isolation_.mode == PluginIsolation::Mode::none) return integrate_here(problem, options);
+    return run_isolated([&] { return integrate_here(problem, options); }, "stepper '" + name() + "'",
+                        isolation_.wall_limit_s, problem.y0(), options.warm_up);
+  }
+
+ private:
+  RunResult integrate_here(const Problem& problem, const RunOptions& options) const {
     PluginCallContext context{&problem, nullptr};
     const rollbench_problem callbacks = plugin_callbacks(context);
     char message[512];
@@ -62,16 +72,29 @@ class PluginStepper final : public Integrator {
         char at[48];
         std::snprintf(at, sizeof at, " at t = %.9g", t);
         // the driver ends the run here, at the last valid state
+        // the reason is the plug-in's bytes: made valid UTF-8 here, where it enters
         throw StepFailure(Status::error, "stepper '" + name() + "' returned error code " +
                                              std::to_string(code) + at +
-                                             (message[0] != '\0' ? std::string(": ") + message : std::string()));
+                                             (message[0] != '\0' ? ": " + valid_utf8(message) : std::string()));
+      }
+      // a Lie-view method claims R on SO(3): hold it to that where the state
+      // comes back (NaN passes on to the driver's "diverged")
+      if (lie_view_) {
+        const double defect = rotation_defect(rotation_of(next));
+        if (defect > kOffGroupBound) [[unlikely]] {
+          char why[160];
+          std::snprintf(why, sizeof why, " (Lie-group view) returned R off SO(3) in the step from t = %.9g: "
+                        "||R^T R - I||_F = %.3g > %.0e", t, defect, kOffGroupBound);
+          throw StepFailure(Status::off_group, "stepper '" + name() + "'" + why);
+        }
       }
     };
     return drive_fixed_step(problem, options, step);
   }
 
- private:
   StepFn step_;
+  bool lie_view_;
+  PluginIsolation isolation_;
 };
 
 bool is_name_character(char c) {
@@ -92,15 +115,15 @@ MethodInfo checked_facts(const struct rollbench_stepper_info* info, const std::s
     if (!is_name_character(c))
       refuse("the name '" + facts.name + "' may hold only letters, digits and . _ + -");
   if (info->family == nullptr || info->family[0] == '\0') refuse("the family of '" + facts.name + "' is empty");
-  facts.family = info->family;
+  facts.family = valid_utf8(info->family);
   if (info->order < 1) refuse("the order of '" + facts.name + "' is " + std::to_string(info->order) + ", not >= 1");
   facts.declared_order = info->order;
   if (info->view != ROLLBENCH_VIEW_FLAT && info->view != ROLLBENCH_VIEW_LIE)
     refuse("the view of '" + facts.name + "' is " + std::to_string(info->view) +
            ", not ROLLBENCH_VIEW_FLAT (0) or ROLLBENCH_VIEW_LIE (1)");
   const char* view = info->view == ROLLBENCH_VIEW_LIE ? "Lie-group view" : "flat view";
-  facts.description = std::string(info->description != nullptr ? info->description : "") + " (plug-in, " + view +
-                      ", " + path + ")";
+  facts.description = valid_utf8(std::string(info->description != nullptr ? info->description : "") + " (plug-in, " +
+                                  view + ", " + path + ")");
   return facts;
 }
 
@@ -110,10 +133,15 @@ rollbench_problem plugin_callbacks(PluginCallContext& context) {
   return {&context, flat_rhs_callback, lie_rhs_callback, so3_exp_callback, so3_dexpinv_callback};
 }
 
-std::unique_ptr<Integrator> load_plugin_stepper(const std::string& path) {
+std::unique_ptr<Integrator> load_plugin_stepper(const std::string& path, const PluginIsolation& isolation) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw InputError("'" + path + "': no such file", "stepper");
+  if (fs::is_directory(path, ec))
+    throw InputError("'" + path + "' is a directory, not a stepper library (give the .so file in it)", "stepper");
+  if (!fs::exists(path, ec)) throw InputError("'" + path + "': no such file", "stepper");
+  if (!fs::is_regular_file(path, ec))
+    throw InputError("'" + path + "' is not a regular file (a device, FIFO or socket), not a stepper library",
+                     "stepper");
   // an absolute path: dlopen would search the library path for a bare name
   const std::string absolute = fs::absolute(path, ec).string();
   void* library = dlopen(absolute.c_str(), RTLD_NOW | RTLD_LOCAL);
@@ -141,7 +169,7 @@ std::unique_ptr<Integrator> load_plugin_stepper(const std::string& path) {
                            " (rebuild it against integrators/plugin/rollbench_stepper.h)",
                        "stepper");
     MethodInfo facts = checked_facts(info(), "'" + path + "': rollbench_stepper_info()", path);
-    return std::make_unique<PluginStepper>(std::move(facts), step);
+    return std::make_unique<PluginStepper>(std::move(facts), step, info()->view == ROLLBENCH_VIEW_LIE, isolation);
   } catch (...) {
     dlclose(library);  // nothing of it was registered
     throw;

@@ -7,6 +7,7 @@
 // status.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -28,6 +29,8 @@ RunOptions every_quarter(double h, double t_end) {
   for (int k = 1; 0.25 * k < t_end; ++k) o.output_times.push_back(0.25 * k);
   return o;
 }
+
+PluginIsolation in_process() { return {PluginIsolation::Mode::none, kDefaultIsolatedWallLimit}; }
 
 std::string load_error(const std::string& path) {
   try {
@@ -142,6 +145,96 @@ TEST(PluginStepper, ANonFiniteStateIsTheUsualDivergedStatus) {
   EXPECT_EQ(run.status, Status::diverged);
   EXPECT_EQ(run.stop_time, 0.5);
   EXPECT_TRUE(run.final_state.allFinite());
+}
+
+TEST(PluginStepper, AnIsolatedRunReturnsWhatTheInProcessRunReturns) {
+  const Problem problem = make_problem(load_scene("chaplygin-valley"));
+  const RunOptions o = every_quarter(1.0 / 64.0, 2.0);
+  for (const char* name : {"midpoint_stepper", "lie_euler_stepper", "fails_stepper"}) {
+    const RunResult a = load_plugin_stepper(library(name))->integrate(problem, o);  // a child process
+    const RunResult b = load_plugin_stepper(library(name), in_process())->integrate(problem, o);
+    EXPECT_EQ(a.status, b.status) << name;
+    EXPECT_EQ(a.message, b.message) << name;
+    EXPECT_EQ(a.stop_time, b.stop_time) << name;
+    EXPECT_EQ(a.final_state, b.final_state) << name;
+    ASSERT_EQ(a.output.t, b.output.t) << name;
+    for (std::size_t i = 0; i < a.output.y.size(); ++i) EXPECT_EQ(a.output.y[i], b.output.y[i]) << name;
+    expect_same_cost(a.cost, b.cost);
+    EXPECT_EQ(a.cost.exp_evals, b.cost.exp_evals) << name;
+    // the child timed its own integration; in-process the caller times it
+    EXPECT_TRUE(std::isfinite(a.solve_seconds) && a.solve_seconds >= 0.0) << name;
+    EXPECT_TRUE(std::isnan(b.solve_seconds)) << name;
+  }
+}
+
+TEST(PluginStepper, ACrashAnAbortAndAHangAreStatusesOfTheRun) {
+  const Problem problem = make_problem(load_scene("valley-sideways"));
+  const RunOptions o = every_quarter(1.0 / 16.0, 2.0);
+  const PluginIsolation one_second{PluginIsolation::Mode::process, 1.0};
+  const RunResult crash = load_plugin_stepper(library("crash_stepper"), one_second)->integrate(problem, o);
+  EXPECT_EQ(crash.status, Status::crashed);
+  EXPECT_EQ(crash.message,
+            "stepper 'crash-stepper' crashed: its process was killed by signal 11 (SIGSEGV: Segmentation fault); its "
+            "state and cost are lost");
+  EXPECT_EQ(crash.stop_time, 0.0);
+  EXPECT_EQ(crash.final_state, problem.y0());
+  const RunResult abort = load_plugin_stepper(library("abort_stepper"), one_second)->integrate(problem, o);
+  EXPECT_EQ(abort.status, Status::crashed);
+  EXPECT_EQ(abort.message,
+            "stepper 'abort-stepper' crashed: its process was killed by signal 6 (SIGABRT: Aborted); its state and "
+            "cost are lost");
+  const RunResult hang = load_plugin_stepper(library("hang_stepper"), one_second)->integrate(problem, o);
+  EXPECT_EQ(hang.status, Status::timeout);
+  EXPECT_EQ(hang.message,
+            "stepper 'hang-stepper' was still running after the wall-clock limit of 1 s (--stepper-timeout) and was "
+            "killed; its state and cost are lost");
+  EXPECT_EQ(hang.final_state, problem.y0());
+}
+
+TEST(PluginStepper, AnInputErrorInTheChildIsThrownAgainInTheParent) {
+  RunOptions o = every_quarter(1.0 / 16.0, 2.0);
+  o.h = -1.0;
+  const Problem problem = make_problem(load_scene("valley-sideways"));
+  for (const PluginIsolation& isolation : {PluginIsolation{}, in_process()}) {
+    try {
+      load_plugin_stepper(library("midpoint_stepper"), isolation)->integrate(problem, o);
+      ADD_FAILURE() << "h = -1 was taken";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), "h");
+      EXPECT_EQ(std::string(e.what()), "'h': a fixed-step method needs a step h > 0");
+    }
+  }
+}
+
+TEST(PluginStepper, ALieViewStateOffSo3IsTheStatusOffGroup) {
+  const Problem problem = make_problem(load_scene("valley-sideways"));
+  const RunOptions o = every_quarter(1.0 / 16.0, 2.0);
+  for (const PluginIsolation& isolation : {PluginIsolation{}, in_process()}) {
+    const RunResult run = load_plugin_stepper(library("off_group_stepper"), isolation)->integrate(problem, o);
+    EXPECT_EQ(run.status, Status::off_group);
+    // R scaled by 1.1: R^T R - I = 0.21 I, whose Frobenius norm is 0.21 sqrt(3)
+    EXPECT_EQ(run.message,
+              "stepper 'off-group-stepper' (Lie-group view) returned R off SO(3) in the step from t = 0.5: "
+              "||R^T R - I||_F = 0.364 > 1e-06");
+    EXPECT_EQ(run.stop_time, 0.5);
+    EXPECT_LT(rotation_defect(rotation_of(run.final_state)), 1e-13);  // the last state on the group
+    EXPECT_EQ(run.output.t, (std::vector<double>{0.25, 0.5}));
+  }
+  // an honest Lie-view method's rounding stays far inside the bound over
+  // many steps, and a flat method's drift is not held to it
+  RunOptions many = every_quarter(1e-4, 2.0);
+  const RunResult honest = load_plugin_stepper(library("lie_euler_stepper"))->integrate(problem, many);
+  EXPECT_EQ(honest.status, Status::ok) << honest.message;
+  EXPECT_LT(rotation_defect(rotation_of(honest.final_state)), 1e-3 * kOffGroupBound);
+  const RunResult flat = load_plugin_stepper(library("midpoint_stepper"))->integrate(problem, every_quarter(0.25, 2.0));
+  EXPECT_EQ(flat.status, Status::ok) << flat.message;
+  EXPECT_GT(rotation_defect(rotation_of(flat.final_state)), kOffGroupBound);
+}
+
+TEST(PluginStepper, AFolderIsNamedAsOne) {
+  const std::string folder = std::filesystem::temp_directory_path().string();
+  EXPECT_EQ(load_error(folder), "'stepper': '" + folder + "' is a directory, not a stepper library (give the .so file in it)");
+  EXPECT_EQ(load_error("/dev/null"), "'stepper': '/dev/null' is not a regular file (a device, FIFO or socket), not a stepper library");
 }
 
 TEST(PluginStepper, ABrokenLibraryIsRefusedNamingTheFileAndTheSymbol) {

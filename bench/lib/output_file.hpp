@@ -1,0 +1,40 @@
+#pragma once
+// Every file rollbench writes (report, merge and score JSON, trajectory and
+// landscape CSV, cached references) goes through OutputFile: the bytes go
+// to a new file next to the target (opened O_CREAT | O_EXCL | O_NOFOLLOW
+// under a unique name) and commit() renames it onto the target. A run that
+// fails before commit leaves an existing file as it was and no partial one:
+// the temporary file is removed. A target that exists and is not a regular
+// file (a FIFO, /dev/stdout) is written in place, since there is nothing
+// there to lose and a rename would replace the device.
+#include <sstream>
+#include <string>
+
+namespace rb {
+
+class OutputFile {
+ public:
+  // Opens the temporary file at once, so that an unwritable place is an
+  // InputError under option ("cannot open 'PATH' for writing") before any
+  // work is done.
+  OutputFile(std::string path, std::string option);
+  ~OutputFile();  // removes the temporary file unless committed
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+
+  std::ostream& stream() { return buffer_; }
+  // Writes what stream() holds and renames it onto the path; InputError
+  // under the option ("could not write 'PATH' (reason)") otherwise.
+  void commit();
+
+ private:
+  std::string path_, option_, temporary_;  // temporary_ empty: writing in place
+  int fd_ = -1;
+  bool committed_ = false;
+  std::ostringstream buffer_;
+};
+
+// The whole of text written to path as OutputFile does.
+void write_output_file(const std::string& path, const std::string& text, const std::string& option);
+
+}  // namespace rb
