@@ -93,7 +93,7 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
           step(*next, t, h, cost);
         }
         if (cost.watch.beyond) [[unlikely]] {
-          if (const Validity v = book.stage_limit(); v.status != Status::ok) {
+          if (const Validity v = book.stage_limit(true); v.status != Status::ok) {
             if (const Validity at = book.check_model_at(*y, t); at.status != Status::ok) return stop_model(at);
             return book.stop(v.status, stage_stop_reason(v, t, h), *y, t);
           }
@@ -118,7 +118,7 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
     // a step that failed where a stage went beyond a limit (an implicit
     // solve iterating there) stops with the limit
     if (cost.watch.beyond)
-      if (const Validity v = book.stage_limit(); v.status != Status::ok) {
+      if (const Validity v = book.stage_limit(true); v.status != Status::ok) {
         if (const Validity at = book.check_model_at(*y, t); at.status != Status::ok) return stop_model(at);
         return book.stop(v.status, stage_stop_reason(v, t, h_step), *y, t);
       }

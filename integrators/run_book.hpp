@@ -76,14 +76,16 @@ class RunBook {
 
   // The limit a stage of the last step went beyond (Cost::watch), then
   // clears the watch: curvature or lift-off, ok otherwise (also for a false
-  // alarm, and for non-finite margins, which the drivers' own tests of the
-  // state report as diverged).
-  Validity stage_limit() {
+  // alarm). Non-finite margins (diverged) count only with non_finite: the
+  // fixed-step loop stops there; an adaptive one shrinks a non-finite
+  // trial by its own rule.
+  Validity stage_limit(bool non_finite = false) {
     StageWatch& w = run_.cost.watch;
     w.beyond = false;
     Validity v = problem_.check_model(w.first);
-    if (v.status != Status::curvature && v.status != Status::lift_off) return {};
-    return v;
+    if (v.status == Status::curvature || v.status == Status::lift_off) return v;
+    if (non_finite && v.status == Status::diverged) return v;
+    return {};
   }
 
   // The run reached its end at y, time t.
