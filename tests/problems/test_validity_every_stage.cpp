@@ -5,7 +5,10 @@
 // sees it. Every family stops there with curvature, its rows kept.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "integrators/methods/dormand_prince54.hpp"
 #include "integrators/registry.hpp"
