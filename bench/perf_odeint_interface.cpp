@@ -3,7 +3,8 @@
 // on valley-sideways),
 //   interface: rb::find_integrator("odeint-rk4").integrate, i.e.
 //              drive_fixed_step with its per-step check_step and copies;
-//   direct:    a do_step loop on the same OdeintSystem, no checks;
+//   direct:    a do_step loop on the same OdeintSystem (its stages' margins
+//              noted, as in every run), no per-step checks;
 //   direct_n:  odeint's integrate_n_steps on it;
 //   direct_checked: the direct loop plus Problem::check_step after each step,
 //              to tell the check's share from the rest of the interface.
@@ -57,7 +58,7 @@ rb::RunResult run_interface() {
 }
 
 // the same steps called directly
-OdeintState run_direct(long& evals) {
+OdeintState run_direct(rb::Cost& evals) {
   ode::runge_kutta4<OdeintState> stepper;
   const OdeintSystem sys{&valley(), &evals};
   OdeintState x = start();
@@ -76,7 +77,7 @@ void interface(benchmark::State& state) {
 
 void direct(benchmark::State& state) {
   for (auto _ : state) {
-    long evals = 0;
+    rb::Cost evals;
     OdeintState x = run_direct(evals);
     benchmark::DoNotOptimize(x.data());
   }
@@ -85,7 +86,7 @@ void direct(benchmark::State& state) {
 
 void direct_n(benchmark::State& state) {
   for (auto _ : state) {
-    long evals = 0;
+    rb::Cost evals;
     OdeintState x = start();
     ode::runge_kutta4<OdeintState> stepper;
     ode::integrate_n_steps(std::ref(stepper), OdeintSystem{&valley(), &evals}, x, 0.0, kH, kSteps);
@@ -96,7 +97,7 @@ void direct_n(benchmark::State& state) {
 
 void direct_checked(benchmark::State& state) {
   for (auto _ : state) {
-    long evals = 0;
+    rb::Cost evals;
     ode::runge_kutta4<OdeintState> stepper;
     const OdeintSystem sys{&valley(), &evals};
     OdeintState x = start();
@@ -122,7 +123,7 @@ void interface_vs_direct(benchmark::State& state) {
       const rb::RunResult run = run_interface();
       benchmark::DoNotOptimize(run.final_state.data());
     } else {
-      long evals = 0;
+      rb::Cost evals;
       OdeintState x = run_direct(evals);
       benchmark::DoNotOptimize(x.data());
     }

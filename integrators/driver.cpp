@@ -28,6 +28,12 @@ std::string model_stop_reason(const Validity& v, double t) {
   return v.reason + at;
 }
 
+std::string stage_stop_reason(const Validity& v, double t, double h) {
+  char at[96];
+  std::snprintf(at, sizeof at, " at t = %.9g (at a stage of the step of h = %.3g from there)", t, h);
+  return v.reason + at;
+}
+
 
 
 Tolerances tolerances_of(const RunOptions& options) {

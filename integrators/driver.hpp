@@ -17,6 +17,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -33,19 +34,18 @@ namespace rb {
 // exp_evals, ...) to cost; the driver counts steps. A step may instead take
 // (y, next, t, h, cost) and write the state at t + h into next, leaving y as
 // it is: that saves copying the state twice a step on the critical path of a
-// cheap step. A step that takes (y, next, t, h, cost, margins) also fills
-// margins at y from its first stage (the right-hand side there computes them
-// anyway): then the model's validity of y is decided at no extra evaluation,
-// one step late, and a state found invalid is dropped with its output row.
-// Other steps get an explicit check of each new state (Problem::check_full).
-// Either way every accepted state and the start are checked once, counted in
-// Cost::validity_checks. A step that fails throws StepFailure. Between two
-// outputs t_a < t_b it takes n = ceil((t_b - t_a) / h) equal steps, so h is
-// kept exactly when the output spacing is a multiple of h.
+// cheap step. Every right-hand side the step evaluates goes through
+// stage_flat_rhs / stage_lie_rhs (or Cost::note), so that its validity
+// margins are tested at every stage (docs/design.md): a stage beyond a limit
+// (curvature, lift-off) stops the run with that status at y, the last valid
+// state, whose output row stays; if y itself is beyond it (checked then, by
+// one evaluation) the run ends at the state before y without y's row. The
+// start and the end are checked by one evaluation each. All of these are
+// counted in Cost::validity_checks. A step that fails throws StepFailure.
+// Between two outputs t_a < t_b it takes n = ceil((t_b - t_a) / h) equal
+// steps, so h is kept exactly when the output spacing is a multiple of h.
 template <class StepFn>
 RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, StepFn&& step) {
-  constexpr bool gives_margins =
-      std::is_invocable_v<StepFn&, const FlatState&, FlatState&, double, double, Cost&, ModelMargins&>;
   constexpr bool writes_next = std::is_invocable_v<StepFn&, const FlatState&, FlatState&, double, double, Cost&>;
   if (!(options.h > 0.0) || !std::isfinite(options.h))
     throw InputError("a fixed-step method needs a step h > 0", "h");
@@ -53,7 +53,7 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
   Cost& cost = book.cost();
   // the state before the current one, the current one and the next,
   // rotated after each accepted step (the one before is where a run whose
-  // current state fails its deferred check ends)
+  // current state is found beyond a limit ends)
   std::array<FlatState, 3> states = {problem.y0(), problem.y0(), FlatState()};
   FlatState* before = &states[0];
   FlatState* y = &states[1];
@@ -67,12 +67,10 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
       out.t.pop_back();
       out.y.pop_back();
     }
-    return book.stop(v.status, model_stop_reason(v, t), *before, t_before);
+    return book.stop(v.status, v.reason, *before, t_before);
   };
-  if constexpr (!gives_margins) {
-    ++cost.validity_checks;
-    if (const Validity v = problem.check_full(*y); v.status != Status::ok) return stop_model(v);
-  }
+  if (const Validity v = book.check_model_at(*y, t); v.status != Status::ok) return stop_model(v);
+  double h_step = options.h;  // the step being taken
   try {
     for (const double t_out : book.outputs()) {
       const double span = t_out - t;
@@ -84,22 +82,21 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
       if (n_real > 1e15) return book.stop(Status::max_steps, "the step count overflows", *y, t);
       const long n = std::max(1L, static_cast<long>(n_real));
       const double h = span / static_cast<double>(n);
+      h_step = h;
       const double t_start = t;
       for (long i = 0; i < n; ++i) {
         if (book.over_budget()) return book.stop_over_budget(*y, t);
-        if constexpr (gives_margins) {
-          ModelMargins margins;
-          step(std::as_const(*y), *next, t, h, cost, margins);
-          ++cost.validity_checks;
-          if (!problem.within_model(margins)) [[unlikely]] {
-            const Validity v = problem.check_model(margins);
-            if (v.status != Status::ok) return stop_model(v);
-          }
-        } else if constexpr (writes_next) {
+        if constexpr (writes_next) {
           step(std::as_const(*y), *next, t, h, cost);
         } else {
           *next = *y;
           step(*next, t, h, cost);
+        }
+        if (cost.watch.beyond) [[unlikely]] {
+          if (const Validity v = book.stage_limit(true); v.status != Status::ok) {
+            if (const Validity at = book.check_model_at(*y, t); at.status != Status::ok) return stop_model(at);
+            return book.stop(v.status, stage_stop_reason(v, t, h), *y, t);
+          }
         }
         ++cost.steps;
         // a NaN stops the run at the step where it appears (also one only in
@@ -108,28 +105,27 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
           const Validity v = problem.check_step(*next);
           if (v.status != Status::ok) return book.stop(v.status, v.reason, *y, t);
         }
-        const double t_next = (i + 1 == n) ? t_out : t_start + static_cast<double>(i + 1) * h;
-        if constexpr (!gives_margins) {
-          if (const Validity m = book.check_model_at(*next, t_next); m.status != Status::ok)
-            return book.stop(m.status, m.reason, *y, t);
-        }
         FlatState* const freed = before;
         before = y;
         y = next;
         next = freed;
         t_before = t;
-        t = t_next;
+        t = (i + 1 == n) ? t_out : t_start + static_cast<double>(i + 1) * h;
       }
       book.output().push(t, *y);
     }
   } catch (const StepFailure& e) {
+    // a step that failed where a stage went beyond a limit (an implicit
+    // solve iterating there) stops with the limit
+    if (cost.watch.beyond)
+      if (const Validity v = book.stage_limit(true); v.status != Status::ok) {
+        if (const Validity at = book.check_model_at(*y, t); at.status != Status::ok) return stop_model(at);
+        return book.stop(v.status, stage_stop_reason(v, t, h_step), *y, t);
+      }
     return book.stop(e.status(), e.what(), *y, t);
   }
-  if constexpr (gives_margins) {
-    // the last state: no step starts from it, so one evaluation of its own
-    ++cost.validity_checks;
-    if (const Validity v = problem.check_full(*y); v.status != Status::ok) return stop_model(v);
-  }
+  // the last state: no step starts from it, so one evaluation of its own
+  if (const Validity v = book.check_model_at(*y, t); v.status != Status::ok) return stop_model(v);
   return book.finish(*y, t);
 }
 
@@ -181,6 +177,10 @@ enum class Attempt { accepted, rejected };
 // Non-finite trial steps a run tolerates before it is called diverged.
 inline constexpr int kMaxNonFiniteTrials = 10;
 
+// How a step with a stage beyond the model's limits shrinks before it is
+// tried again (hard, as after a non-finite trial).
+inline constexpr double kLimitShrink = 0.25;
+
 // Runs stepper from the problem's start to the last output time. A stepper
 // offers
 //
@@ -212,6 +212,18 @@ inline constexpr int kMaxNonFiniteTrials = 10;
 //         t and h updated, its own rejections added to cost.rejected;
 //     double first_step(double span) const;     the first h when options.h = 0.
 //
+// A library's stepper (attempt, advance) also offers
+//     void restore(const FlatState& y);          back to y, the current state,
+//         after an attempt the driver refuses (see below).
+//
+// Every stage a stepper evaluates goes through stage_flat_rhs /
+// stage_lie_rhs (or Cost::note), rejected attempts' included: an attempt
+// with a stage beyond the model's limits (curvature, lift-off) is rejected
+// and retried at kLimitShrink of its step; the run stops at y with that
+// limit's status only when the step can shrink no further (min_step_at),
+// or at the state before y when y itself is beyond it (checked then, by
+// one evaluation). The start and the end get one evaluation each; all are
+// counted in Cost::validity_checks (docs/design.md).
 // A stepper adds its own counts (rhs_evals, ...) to cost; the driver counts
 // steps and rejections. A failure is thrown: StepFailure carries its status,
 // any other std::exception becomes Status::error with its message.
@@ -229,8 +241,21 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
   Cost& cost = book.cost();
   FlatState y = problem.y0();
   double t = 0.0;
+  // the accepted state before y, where a run ends whose y is found beyond a
+  // limit; and whether y is known to be within them
+  FlatState y_before = y;
+  double t_before = 0.0;
+  bool y_checked = true;
+  auto stop_before = [&](const Validity& v) {
+    Trajectory& out = book.output();
+    while (!out.t.empty() && out.t.back() > t_before) {
+      out.t.pop_back();
+      out.y.pop_back();
+    }
+    return book.stop(v.status, v.reason, y_before, t_before);
+  };
   if (const Validity v = attainable(tol, y); v.status != Status::ok) return book.stop(v.status, v.reason, y, t);
-  // the start, checked as every accepted state is (see below)
+  // the start, by one evaluation (the steps' stages check every other state)
   if (const Validity v = book.check_model_at(y, t); v.status != Status::ok) return book.stop(v.status, v.reason, y, t);
   double h = 0.0;
   if (options.h > 0.0)
@@ -246,6 +271,20 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
       return FilterController(filter_controllers().front(), 1);  // unused
   };
   [[maybe_unused]] FilterController controller = make_controller();
+  // A step (of h_tried from y) refused for a stage beyond a limit
+  // (curvature, lift-off): if y itself is beyond it, the run ends at the
+  // state before; else the step shrinks, and the run stops at y only when
+  // the limit is still met at the smallest step time resolves.
+  auto refuse = [&](const Validity& limit, double h_tried) -> std::optional<RunResult> {
+    if (!y_checked) {
+      if (const Validity at = book.check_model_at(y, t); at.status != Status::ok) return stop_before(at);
+      y_checked = true;
+    }
+    ++cost.rejected;
+    if (!(h_tried > min_step_at(t))) return book.stop(limit.status, stage_stop_reason(limit, t, h_tried), y, t);
+    h = std::max(kLimitShrink * h_tried, min_step_at(t));
+    return std::nullopt;
+  };
   int nonfinite_trials = 0;
   FlatState y_new, y_out;  // reused: no allocation in the loop
   std::size_t next = 0;    // the next output to record
@@ -261,6 +300,17 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
     double h_next = h_try;
     double t_new = t + h_try;
     bool accepted = true;
+    Validity limit;  // a stage of this attempt beyond the model's limits
+    // a failure of an attempt (an implicit solve, a library's error) whose
+    // stages went beyond a limit is that limit's rejection; the stepper
+    // goes back to y
+    auto failed_at_limit = [&] {
+      if (!cost.watch.beyond) return false;
+      limit = book.stage_limit();
+      if (limit.status == Status::ok) return false;
+      if constexpr (!estimates) stepper.restore(y);
+      return true;
+    };
     try {
       if constexpr (lands_itself) {
         t_new = t;
@@ -269,7 +319,10 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
         lands = t_new >= bound;
       } else if constexpr (estimates) {
         const double err = stepper.try_step(t, h_try, cost);
-        if (!std::isfinite(err)) {
+        if (cost.watch.beyond) limit = book.stage_limit();
+        if (limit.status != Status::ok) [[unlikely]] {
+          accepted = false;  // below
+        } else if (!std::isfinite(err)) {
           // a trial step that left where F is finite (past a landscape's
           // edge) was too large: shrink it hard. If the state itself blows
           // up (or the edge is met again and again), the run ends diverged.
@@ -291,12 +344,23 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
       } else {
         accepted = stepper.attempt(t, h_next, cost) == Attempt::accepted;
       }
+      if constexpr (!estimates) {
+        // a library's step: a stage beyond a limit undoes what it accepted
+        if (cost.watch.beyond) [[unlikely]] {
+          limit = book.stage_limit();
+          if (limit.status != Status::ok && accepted) stepper.restore(y);
+        }
+      }
     } catch (const StepFailure& e) {
-      return book.stop(e.status(), e.what(), y, t);
+      if (!failed_at_limit()) return book.stop(e.status(), e.what(), y, t);
     } catch (const std::exception& e) {
-      return book.stop(Status::error, e.what(), y, t);
+      if (!failed_at_limit()) return book.stop(Status::error, e.what(), y, t);
     } catch (...) {
       return book.stop(Status::error, "unknown exception from the stepper", y, t);
+    }
+    if (limit.status != Status::ok) [[unlikely]] {
+      if (std::optional<RunResult> stop = refuse(limit, lands_itself && t_new > t ? t_new - t : h_try)) return *stop;
+      continue;
     }
     if (!accepted) {
       ++cost.rejected;
@@ -314,24 +378,24 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
       // controller's previous proposal when it was larger
       h = lands ? std::max(h_next, h) : h_next;
     }
-    // a step to an invalid state ends the run at the last valid one; no
-    // output is interpolated towards it. The model's limits are checked at
-    // every accepted state by one evaluation there (a library's stepper
-    // does not say where it evaluates)
+    // a step to a non-finite state or out of the domain ends the run at the
+    // last valid one; no output is interpolated towards it. The model's
+    // limits were tested at every stage of the step.
     stepper.state(y_new);
     if (const Validity v = problem.check_step(y_new); v.status != Status::ok)
       return book.stop(v.status, v.reason, y, t_old);
-    if (const Validity m = book.check_model_at(y_new, t); m.status != Status::ok)
-      return book.stop(m.status, m.reason, y, t_old);
     // record every output this step reached
     if constexpr (Stepper::dense_output) {
       Trajectory& out = book.output();
+      const std::size_t rows_before = out.t.size(), next_before = next;
+      Validity row_limit;
       for (; next < outputs.size() && outputs[next] <= t; ++next) {
         const double t_out = outputs[next];
-        if (t_out == t)
+        if (t_out == t) {
           y_out = y_new;
-        else
+        } else {
           stepper.interpolate(t_out, y_out);
+        }
         // a non-finite interpolant (the dense output can see what the
         // step's end did not) is not a state to end on
         const Validity at = problem.check_step(y_out);
@@ -339,14 +403,37 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
           const bool none = out.y.empty();
           return book.stop(at.status, at.reason, none ? y : out.y.back(), none ? t_old : out.t.back());
         }
+        if (t_out != t) {
+          // a row between the step's stages is a state the run reports:
+          // checked as a stage is, by one evaluation (counted)
+          cost.note(problem.model().margins_at(y_out));
+          if (cost.watch.beyond && (row_limit = book.stage_limit()).status != Status::ok) break;
+        }
         out.push(t_out, y_out);
+      }
+      if (row_limit.status != Status::ok) [[unlikely]] {
+        // the step went beyond a limit between its stages: undone, refused
+        out.t.resize(rows_before);
+        out.y.resize(rows_before);
+        next = next_before;
+        stepper.restore(y);
+        --cost.steps;
+        const double h_tried = t - t_old;
+        t = t_old;
+        if (std::optional<RunResult> stop = refuse(row_limit, h_tried)) return *stop;
+        continue;
       }
     } else if (lands) {
       book.output().push(t, y_new);
       ++next;
     }
+    y_before = y;
+    t_before = t_old;
     y = y_new;
+    y_checked = false;
   }
+  // the last state: no step starts from it, so one evaluation of its own
+  if (const Validity v = book.check_model_at(y, t); v.status != Status::ok) return stop_before(v);
   return book.finish(y, t);
 }
 

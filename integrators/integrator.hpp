@@ -52,6 +52,15 @@ struct MethodInfo {
   std::string description{};  // one line for `rollbench list`
 };
 
+// Where the stages of the step being taken went beyond the model's limits
+// (docs/design.md, "Validity at every stage"): every right-hand side a
+// stepper evaluates for a step folds its margins in (Cost::note), and the
+// driver turns a stage beyond a limit into a rejected step or a stop.
+struct StageWatch {
+  bool beyond = false;  // some stage failed Problem::within_model since the driver last looked
+  ModelMargins first;   // the margins of the first such stage
+};
+
 // Cost of a run, counted the same way by every integrator.
 struct Cost {
   long steps = 0;           // accepted steps
@@ -60,11 +69,39 @@ struct Cost {
   long jacobian_evals = 0;  // evaluations of the 14x14 Jacobian of F
   long exp_evals = 0;       // so(3) exponentials (Lie-group methods)
   long dexpinv_evals = 0;   // dexpinv applications (Lie-group methods)
-  // states checked against the model's limits (lift-off, curvature): each
-  // accepted state and the start, once (the same count for every method
-  // with the same number of accepted steps)
+  // evaluations whose validity margins were tested against the model's
+  // limits (lift-off, curvature): every stage of every step (accepted or
+  // rejected), plus the explicit checks of the start, the end and a stop
+  // (docs/design.md); a starting-step guess's evaluations are not among them
   long validity_checks = 0;
+  StageWatch watch;  // not reported: the driver's view of the current step
+
+  // One stage's margins: counted, and kept when beyond a limit. Branch-free
+  // but for the rare failure.
+  void note(const ModelMargins& m) {
+    ++validity_checks;
+    if (!Problem::within_model(m)) [[unlikely]] {
+      if (!watch.beyond) watch.first = m;
+      watch.beyond = true;
+    }
+  }
 };
+
+// One stage's right-hand side as every stepper evaluates it: with its
+// validity margins noted in cost (the count of rhs_evals stays the
+// stepper's). The margins are a few products of what the evaluation
+// computes anyway.
+[[gnu::always_inline]] inline void stage_flat_rhs(const Problem& problem, const double* y, double* dy, Cost& cost) {
+  ModelMargins m;
+  problem.flat_rhs(y, dy, m);
+  cost.note(m);
+}
+[[gnu::always_inline]] inline void stage_lie_rhs(const Problem& problem, const Mat3& R, const double* z, double* omega,
+                                                 double* dz, Cost& cost) {
+  ModelMargins m;
+  problem.lie_rhs(R, z, omega, dz, m);
+  cost.note(m);
+}
 
 // The states at the recorded output times, in order.
 struct Trajectory {

@@ -22,6 +22,10 @@ inline double t_end_of(const Problem& problem, const RunOptions& options) {
 
 // A model check's reason with the time it failed at (lift-off, curvature).
 std::string model_stop_reason(const Validity& v, double t);
+// The reason of a stage beyond a limit within the step of h from t: "r *
+// max curvature reached 1.04 at t = 0.3 (at a stage of the step of h = 0.05
+// from there)".
+std::string stage_stop_reason(const Validity& v, double t, double h);
 
 // A failure a stepper raises from inside a step (a library's error code or
 // exception) with the status the run should end with. The driver ends the
@@ -68,6 +72,20 @@ class RunBook {
     Validity v = problem_.check_full(y);
     if (v.status != Status::ok) v.reason = model_stop_reason(v, t);
     return v;
+  }
+
+  // The limit a stage of the last step went beyond (Cost::watch), then
+  // clears the watch: curvature or lift-off, ok otherwise (also for a false
+  // alarm). Non-finite margins (diverged) count only with non_finite: the
+  // fixed-step loop stops there; an adaptive one shrinks a non-finite
+  // trial by its own rule.
+  Validity stage_limit(bool non_finite = false) {
+    StageWatch& w = run_.cost.watch;
+    w.beyond = false;
+    Validity v = problem_.check_model(w.first);
+    if (v.status == Status::curvature || v.status == Status::lift_off) return v;
+    if (non_finite && v.status == Status::diverged) return v;
+    return {};
   }
 
   // The run reached its end at y, time t.

@@ -40,9 +40,8 @@ Rk4Projected::Rk4Projected(Projection projection)
       projection_(projection) {}
 
 RunResult Rk4Projected::integrate(const Problem& problem, const RunOptions& options) const {
-  auto f = [&](const FlatState& y, FlatState& dy) { problem.flat_rhs(y.data(), dy.data()); };
   auto step = [&](FlatState& y, double /*t*/, double h, Cost& cost) {
-    rk4_step(y, h, f);
+    rk4_step(y, h, [&](const FlatState& x, FlatState& dx) { stage_flat_rhs(problem, x.data(), dx.data(), cost); });
     cost.rhs_evals += 4;
     // a non-finite R has no closest rotation; the driver reports it diverged
     if (!y.allFinite()) return;
@@ -61,13 +60,13 @@ Rk4Quaternion::Rk4Quaternion()
 
 RunResult Rk4Quaternion::integrate(const Problem& problem, const RunOptions& options) const {
   const bool anisotropic = problem.model().anisotropic();
-  auto f = [&](const QuatState& x, QuatState& dx) {
+  auto f = [&](const QuatState& x, QuatState& dx, Cost& cost) {
     Vec3 omega;
     ZState g;
     const ZState z = x.tail<kZSize>();
     // R enters only for an anisotropic ball: then the stage's own q
     const Mat3 R = anisotropic ? rotation_of_quaternion(x.head<4>().normalized()) : Mat3::Identity();
-    problem.lie_rhs(R, z.data(), omega.data(), g.data());
+    stage_lie_rhs(problem, R, z.data(), omega.data(), g.data(), cost);
     // (0, omega) (x) q = (-omega . q_v, q_w omega + omega x q_v)
     const Vec3 qv = x.segment<3>(1);
     dx[0] = -0.5 * omega.dot(qv);
@@ -82,7 +81,7 @@ RunResult Rk4Quaternion::integrate(const Problem& problem, const RunOptions& opt
   x << q0.w(), q0.x(), q0.y(), q0.z(), z_of(problem.y0());
   auto step = [&](FlatState& y, double /*t*/, double h, Cost& cost) {
     x.tail<kZSize>() = z_of(y);
-    rk4_step(x, h, f);
+    rk4_step(x, h, [&](const QuatState& s, QuatState& ds) { f(s, ds, cost); });
     cost.rhs_evals += 4;
     x.head<4>().normalize();
     set_rotation(y, rotation_of_quaternion(x.head<4>()));

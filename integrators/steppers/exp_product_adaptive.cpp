@@ -33,7 +33,7 @@ class ExpPairStepper {
   // step is kept in R_new_, dz_new_ for accept.
   double try_step(double /*t*/, double h, Cost& cost) {
     if (!have_first_) {
-      problem_->lie_rhs(R_, z_.data(), K_[0].data(), L_[0].data());
+      stage_lie_rhs(*problem_, R_, z_.data(), K_[0].data(), L_[0].data(), cost);
       ++cost.rhs_evals;
       have_first_ = true;
     }

@@ -63,21 +63,20 @@ struct ExpProductStep {
       if (anisotropic) {
         // R enters omega and G: evaluate at the stage's own orientation
         Rs[i] = apply(plan.stage[i], R, h, cost);
-        problem.lie_rhs(Rs[i], Z.data(), K[i].data(), L[i].data());
+        stage_lie_rhs(problem, Rs[i], Z.data(), K[i].data(), L[i].data(), cost);
       } else {
-        problem.lie_rhs(R, Z.data(), K[i].data(), L[i].data());
+        stage_lie_rhs(problem, R, Z.data(), K[i].data(), L[i].data(), cost);
       }
     }
     cost.rhs_evals += plan.stages - 1;
   }
 
-  // The fixed step (drive_fixed_step). margins: the validity margins at y,
-  // from the first stage (at y itself)
-  void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost,
-                  ModelMargins& margins) const {
+  // The fixed step (drive_fixed_step); every stage's validity margins are
+  // noted in cost (stage_lie_rhs)
+  void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost) const {
     const ZState z = z_of(y);
     const Mat3 R = rotation_of(y);
-    problem.lie_rhs(R, z.data(), K[0].data(), L[0].data(), margins);
+    stage_lie_rhs(problem, R, z.data(), K[0].data(), L[0].data(), cost);
     ++cost.rhs_evals;
     later_stages(R, z, h, cost);
     ZState dz;

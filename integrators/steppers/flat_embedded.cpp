@@ -33,7 +33,7 @@ class FlatPairStepper {
   // step is kept in y_new_ for accept.
   double try_step(double /*t*/, double h, Cost& cost) {
     if (!have_first_) {
-      problem_->flat_rhs(y_.data(), k_[0].data());
+      stage_flat_rhs(*problem_, y_.data(), k_[0].data(), cost);
       ++cost.rhs_evals;
       have_first_ = true;
     }
@@ -41,22 +41,21 @@ class FlatPairStepper {
     // itself, whose sum y + h sum b_j k_j is the same sum as its row's
     for (int i = 1; i < attempt_; ++i) {
       stage_ = y_ + h * combine(row(i), i);
-      problem_->flat_rhs(stage_.data(), k_[static_cast<std::size_t>(i)].data());
+      stage_flat_rhs(*problem_, stage_.data(), k_[static_cast<std::size_t>(i)].data(), cost);
       ++cost.rhs_evals;
     }
     y_new_ = y_ + h * combine(tableau_->b_weights().data(), attempt_);
     return y_new_.allFinite() ? error_norm(h) : std::numeric_limits<double>::quiet_NaN();
   }
 
-  void accept(double /*t*/, double /*h*/, Cost& cost) {
+  void accept(double /*t*/, double /*h*/, Cost& /*cost*/) {
     y_ = y_new_;
-    // the next step's first stage
-    if (fsal_in_attempt_) {
+    // the next step's first stage: the FSAL stage, or evaluated by the next
+    // attempt (so that its margins are that attempt's)
+    if (fsal_in_attempt_)
       k_[0] = k_[static_cast<std::size_t>(*tableau_->fsal_stage())];
-    } else {
-      problem_->flat_rhs(y_.data(), k_[0].data());
-      ++cost.rhs_evals;
-    }
+    else
+      have_first_ = false;
   }
 
   void state(FlatState& y) const { y = y_; }

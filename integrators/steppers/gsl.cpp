@@ -78,9 +78,9 @@ constexpr double kFixedStepNewtonTol = 1e-13;
 // Per-run state the C callbacks see through gsl_odeiv2_system::params.
 struct CallbackState {
   const Problem* problem = nullptr;
-  // when set, the next rhs call also fills it with the validity margins at
-  // its y and clears it (see the fixed-step drive)
-  ModelMargins* margins = nullptr;
+  // the run's cost, set by each step: every rhs call notes its validity
+  // margins there (stage_flat_rhs), for the driver to look at after the step
+  Cost* cost = nullptr;
   long rhs_evals = 0;
   long jacobian_evals = 0;
   std::string exception;  // what a callback caught, empty when none
@@ -96,12 +96,7 @@ int rhs_callback_unchecked(double /*t*/, const double y[], double dydt[], void* 
   auto& s = *static_cast<CallbackState*>(params);
   ++s.rhs_evals;
   try {
-    if (s.margins) {
-      s.problem->flat_rhs(y, dydt, *s.margins);
-      s.margins = nullptr;
-    } else {
-      s.problem->flat_rhs(y, dydt);
-    }
+    stage_flat_rhs(*s.problem, y, dydt, *s.cost);
   } catch (const std::exception& e) {
     s.exception = e.what();
     return GSL_EBADFUNC;
@@ -271,6 +266,7 @@ class GslEvolveStepper {
 
   void advance(double& t, double bound, double& h, Cost& cost) {
     gsl_odeiv2_evolve* evolve = driver_->e;
+    cb_->cost = &cost;
     const double t_prev = t;
     const int s = gsl_odeiv2_evolve_apply(evolve, driver_->c, driver_->s, sys_, &t, bound, &h, y_.data());
     // evolve->count also counts the attempts its control rejected, so it is
@@ -286,6 +282,13 @@ class GslEvolveStepper {
       const Validity v = failure_of(s, *cb_, stepper_, true, t_prev, h);
       throw StepFailure(v.status, v.reason);
     }
+  }
+  // back to y after a step the driver refused (a stage beyond a limit):
+  // evolve and the stepper forget their history (a multistep method's too)
+  void restore(const FlatState& y) {
+    y_ = y;
+    gsl_odeiv2_driver_reset(driver_);
+    failed_seen_ = 0;
   }
   // evolve leaves y at no valid state on failure; the driver then ends at
   // the state it kept
@@ -328,6 +331,7 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
     // no dydt_in / dydt_out: GSL would spend an extra rhs on the latter and
     // the shared loop has no use for either
     auto advance = [&](FlatState& y, double t, double h, Cost& cost) {
+      cb.cost = &cost;
       const int s = gsl_odeiv2_step_apply(step, t, h, y.data(), yerr.data(), nullptr, nullptr, &sys);
       cost.rhs_evals = cb.rhs_evals;
       cost.jacobian_evals = cb.jacobian_evals;
@@ -336,17 +340,7 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
         throw StepFailure(v.status, v.reason);
       }
     };
-    // an explicit stepper's first evaluation is at y (no dydt_in): it gives
-    // the driver the validity margins there for free
-    auto advance_giving_margins = [&](const FlatState& y, FlatState& next, double t, double h, Cost& cost,
-                                      ModelMargins& margins) {
-      next = y;
-      cb.margins = &margins;
-      advance(next, t, h, cost);
-      cb.margins = nullptr;
-    };
-    return needs_jacobian() ? drive_fixed_step(problem, options, advance)
-                         : drive_fixed_step(problem, options, advance_giving_margins);
+    return drive_fixed_step(problem, options, advance);
   }
 
   // adaptive: validate everything before allocating

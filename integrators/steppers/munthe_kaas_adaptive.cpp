@@ -70,7 +70,7 @@ class LieStepper {
   // step is kept in w_new_ for accept.
   double try_step(double /*t*/, double h, Cost& cost) {
     if (!have_first_) {
-      problem_->lie_rhs(R_, z_.data(), omega_first_.data(), g_first_.data());
+      stage_lie_rhs(*problem_, R_, z_.data(), omega_first_.data(), g_first_.data(), cost);
       ++cost.rhs_evals;
       have_first_ = true;
     }
@@ -97,7 +97,9 @@ class LieStepper {
       omega_first_ = omega_fsal_;
       g_first_ = k_[static_cast<std::size_t>(fsal_)].tail<kZSize>();
     } else {
-      problem_->lie_rhs(R_, z_.data(), omega_first_.data(), g_first_.data());
+      // its margins stay in cost.watch for the driver's look after the
+      // next attempt, whose first stage this is
+      stage_lie_rhs(*problem_, R_, z_.data(), omega_first_.data(), g_first_.data(), cost);
       ++cost.rhs_evals;
     }
     if constexpr (Dense) dense_outputs(t, h, w_new_, cost);
@@ -106,6 +108,14 @@ class LieStepper {
   void state(FlatState& y) const {
     set_rotation(y, R_);
     y.tail<kZSize>() = z_;
+  }
+  // back to the step's start after the driver refused the step accepted
+  // last (its dense output went beyond a limit); the first stage there is
+  // evaluated again by the next attempt
+  void restore(const FlatState& /*y, kept as R_prev_, z_prev_*/) {
+    R_ = R_prev_;
+    z_ = z_prev_;
+    have_first_ = false;
   }
 
   // The outputs were computed in attempt (they cost stages and exps, counted
@@ -140,10 +150,10 @@ class LieStepper {
     Vec3 omega;
     ZState g;
     if (problem_->model().anisotropic()) {
-      problem_->lie_rhs(Mat3(so3_exp(w.head<3>()) * R_n), z.data(), omega.data(), g.data());
+      stage_lie_rhs(*problem_, Mat3(so3_exp(w.head<3>()) * R_n), z.data(), omega.data(), g.data(), cost);
       ++cost.exp_evals;
     } else {
-      problem_->lie_rhs(R_n, z.data(), omega.data(), g.data());
+      stage_lie_rhs(*problem_, R_n, z.data(), omega.data(), g.data(), cost);
     }
     ++cost.rhs_evals;
     k_[static_cast<std::size_t>(i)] << dexpinv(w.head<3>(), omega), g;

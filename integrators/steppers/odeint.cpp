@@ -53,28 +53,12 @@ class OdeintFixed final : public OdeintIntegrator {
     Stepper stepper;
     OdeintState x;
     load(problem.y0(), x);
-    if constexpr (kFirstCallAtStart) {
-      // the first evaluation of every do_step is at x: it gives the margins
-      auto step = [&](const FlatState& /*y, held in x*/, FlatState& next, double t, double h, Cost& cost,
-                      ModelMargins& margins) {
-        ModelMargins* pending = &margins;
-        stepper.do_step(OdeintSystem{&problem, &cost.rhs_evals, &pending}, x, t, h);
-        store(x, next);
-      };
-      return drive_fixed_step(problem, options, step);
-    } else {
-      auto step = [&](const FlatState& /*y, held in x*/, FlatState& next, double t, double h, Cost& cost) {
-        stepper.do_step(OdeintSystem{&problem, &cost.rhs_evals}, x, t, h);
-        store(x, next);
-      };
-      return drive_fixed_step(problem, options, step);
-    }
+    auto step = [&](const FlatState& /*y, held in x*/, FlatState& next, double t, double h, Cost& cost) {
+      stepper.do_step(OdeintSystem{&problem, &cost}, x, t, h);
+      store(x, next);
+    };
+    return drive_fixed_step(problem, options, step);
   }
-
- private:
-  // dopri5 reuses its last evaluation (FSAL), at the step's end: the model
-  // check then takes an evaluation of its own
-  static constexpr bool kFirstCallAtStart = !std::is_same_v<Stepper, ode::runge_kutta_dopri5<OdeintState>>;
 };
 
 // Adams-Bashforth-Moulton keeps the derivatives of its last Steps steps and
@@ -97,7 +81,7 @@ class OdeintAbm final : public OdeintIntegrator {
         stepper.reset();
         h_history = h;
       }
-      stepper.do_step(OdeintSystem{&problem, &cost.rhs_evals}, x, t, h);
+      stepper.do_step(OdeintSystem{&problem, &cost}, x, t, h);
       store(x, next);
     };
     return drive_fixed_step(problem, options, step);
@@ -150,13 +134,19 @@ class ControlledStepper {
   }
 
   Attempt attempt(double t, double& h, Cost& cost) {
-    const OdeintSystem sys{problem_, &cost.rhs_evals};
+    const OdeintSystem sys{problem_, &cost};
     if (!dxdt_current_) sys(x_, dxdt_, t);
     dxdt_current_ = true;
     const ode::controlled_step_result r = guarded([&] { return controlled_.try_step(sys, x_, dxdt_, t, h); });
     if (r != ode::success) return Attempt::rejected;
     dxdt_current_ = false;
     return Attempt::accepted;
+  }
+  // undoes an accepted attempt the driver refused (a stage beyond a limit)
+  void restore(const FlatState& y) {
+    load(y, x_);
+    dxdt_current_ = false;
+    if constexpr (std::is_same_v<Controlled, BulirschStoer>) controlled_.reset();
   }
   void state(FlatState& y) const { store(x_, y); }
   void interpolate(double, FlatState&) const {}
@@ -183,7 +173,8 @@ class DenseDopri5 {
   }
 
   Attempt attempt(double t, double& h, Cost& cost) {
-    const OdeintSystem sys{problem_, &cost.rhs_evals};
+    const OdeintSystem sys{problem_, &cost};
+    just_accepted_ = false;
     if (!started_) sys(x_[cur_], dxdt_[cur_], t);
     started_ = true;
     const int other = 1 - cur_;
@@ -194,7 +185,14 @@ class DenseDopri5 {
     t_old_ = t;
     t_new_ = t_step;
     cur_ = other;
+    just_accepted_ = true;
     return Attempt::accepted;
+  }
+  // undoes an attempt the driver refused: after an accepted one the slot
+  // before it still holds y and F(y); after a failed one cur_ still does
+  void restore(const FlatState& /*y, in a slot*/) {
+    if (just_accepted_) cur_ = 1 - cur_;
+    just_accepted_ = false;
   }
   void state(FlatState& y) const { store(x_[cur_], y); }
   // dopri5's own 4th-order interpolant; uses the stages of the last step.
@@ -211,6 +209,7 @@ class DenseDopri5 {
   OdeintState x_[2], dxdt_[2];
   int cur_ = 0;
   bool started_ = false;
+  bool just_accepted_ = false;  // the last attempt moved cur_
   double t_old_ = 0.0, t_new_ = 0.0;
 };
 

@@ -17,23 +17,16 @@ namespace rb {
 // odeint's state and derivative type: y in R^14, laid out as FlatState.
 using OdeintState = std::array<double, kFlatSize>;
 
-// The flat view as an odeint system, dxdt = F(x). evals points to a counter
-// of the run (integrators are shared across threads and keep no state).
-// When *margins is set, the next call also fills it with the validity
-// margins at its x and clears it (a one-step stepper's first call is at the
-// step's start: drive_fixed_step's margins for free).
+// The flat view as an odeint system, dxdt = F(x). cost is the run's
+// (integrators are shared across threads and keep no state): every call is
+// counted and its validity margins noted there (stage_flat_rhs), so that
+// the driver sees a stage beyond the model's limits after odeint's step.
 struct OdeintSystem {
   const Problem* problem;
-  long* evals;
-  ModelMargins** margins = nullptr;
+  Cost* cost;
   void operator()(const OdeintState& x, OdeintState& dxdt, double /*t*/) const {
-    if (margins && *margins) {
-      problem->flat_rhs(x.data(), dxdt.data(), **margins);
-      *margins = nullptr;
-    } else {
-      problem->flat_rhs(x.data(), dxdt.data());
-    }
-    ++*evals;
+    stage_flat_rhs(*problem, x.data(), dxdt.data(), *cost);
+    ++cost->rhs_evals;
   }
 };
 

@@ -23,13 +23,13 @@ using StepFn = int (*)(const rollbench_problem*, double, double, const double*, 
 // the callbacks: evaluate through the Problem and count like a built-in step
 void flat_rhs_callback(void* c, const double* y, double* dy) {
   auto& context = *static_cast<PluginCallContext*>(c);
-  context.problem->flat_rhs(y, dy);
+  stage_flat_rhs(*context.problem, y, dy, *context.cost);
   ++context.cost->rhs_evals;
 }
 
 void lie_rhs_callback(void* c, const double* R, const double* z, double* omega, double* dz) {
   auto& context = *static_cast<PluginCallContext*>(c);
-  context.problem->lie_rhs(Mat3(Eigen::Map<const RowMajorMat3>(R)), z, omega, dz);
+  stage_lie_rhs(*context.problem, Mat3(Eigen::Map<const RowMajorMat3>(R)), z, omega, dz, *context.cost);
   ++context.cost->rhs_evals;
 }
 

@@ -10,6 +10,10 @@
 
 namespace rb {
 
+// The rotation a homogeneous ball's Lie-view right-hand side is given: it
+// does not read it (RollingBall::lie_rhs).
+inline const Mat3 kAnyRotation = Mat3::Identity();
+
 // exp by Rodrigues' formula and its dexpinv (closed form, series or the
 // seminar's). Inlined into the stage loop: out of line, each dexpinv passed
 // its vectors through memory (callgrind: 76 instructions a call).
@@ -36,14 +40,22 @@ struct MkStep {
   std::array<Vec3, kMaxStages>& K;    // u' at the stages
   std::array<ZState, kMaxStages>& L;  // z' at the stages
 
-  // margins: the validity margins at y, from the first stage (at y itself)
-  void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost,
-                  ModelMargins& margins) const {
+  // every stage's validity margins are noted in cost (stage_lie_rhs)
+  void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost) const {
     const int stages = S > 0 ? S : terms.stages;
     const ZState z = z_of(y);
-    const Mat3 R = rotation_of(y);
+    // R_n, read in place: the homogeneous ball's right-hand side does not
+    // read R, so its stages are given any rotation and R_n is read once, by
+    // the update; only an anisotropic ball's stages take a copy
+    const Eigen::Map<const RowMajorMat3> Rn(y.data() + kOffsetR);
+    Mat3 R_copy;
+    const Mat3* R = &kAnyRotation;
+    if (anisotropic) {
+      R_copy = Rn;
+      R = &R_copy;
+    }
     // the first stage, at u = 0 (dexpinv the identity) and R itself
-    problem.lie_rhs(R, z.data(), K[0].data(), L[0].data(), margins);
+    stage_lie_rhs(problem, *R, z.data(), K[0].data(), L[0].data(), cost);
     for (std::size_t i = 1; i < static_cast<std::size_t>(stages); ++i) {
       const StageTerms::Row& row = terms.a[i];
       // U = sum h a_ij K_j, Z = z + sum h a_ij L_j over the non-zero terms
@@ -54,10 +66,10 @@ struct MkStep {
       Vec3 omega;
       if (anisotropic) {
         // R enters omega and G: evaluate at the stage's own orientation
-        problem.lie_rhs(Mat3(map.exp(U) * R), Z.data(), omega.data(), L[i].data());
+        stage_lie_rhs(problem, Mat3(map.exp(U) * *R), Z.data(), omega.data(), L[i].data(), cost);
         ++cost.exp_evals;
       } else {
-        problem.lie_rhs(R, Z.data(), omega.data(), L[i].data());
+        stage_lie_rhs(problem, *R, Z.data(), omega.data(), L[i].data(), cost);
       }
       K[i] = map.dexpinv(U, omega);
       ++cost.dexpinv_evals;
@@ -66,7 +78,7 @@ struct MkStep {
     ZState dz;
     terms.b.sum(u, h, K);
     terms.b.sum(dz, h, L);
-    set_rotation(next, map.exp(u) * R);
+    Eigen::Map<RowMajorMat3>(next.data() + kOffsetR).noalias() = map.exp(u) * Rn;
     next.tail<kZSize>() = z + dz;
     cost.rhs_evals += stages;
     ++cost.exp_evals;

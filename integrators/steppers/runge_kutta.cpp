@@ -27,11 +27,10 @@ struct RkStep {
   std::array<FlatState, kMaxStages>& k;
   FlatState& Y;
 
-  // margins: the validity margins at y, from the first stage (at y itself)
-  void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost,
-                  ModelMargins& margins) const {
+  // every stage's validity margins are noted in cost (stage_flat_rhs)
+  void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost) const {
     const int stages = S > 0 ? S : terms.stages;
-    problem.flat_rhs(y.data(), k[0].data(), margins);
+    stage_flat_rhs(problem, y.data(), k[0].data(), cost);
     for (int i = 1; i < stages; ++i) {
       const StageTerms::Row& row = terms.a[static_cast<std::size_t>(i)];
       // the stage's state, y + h a_i0 k_0 + h a_i1 k_1 + ... (the non-zero
@@ -41,7 +40,7 @@ struct RkStep {
         row.sum(Y, y, h, k);
         at = &Y;
       }
-      problem.flat_rhs(at->data(), k[static_cast<std::size_t>(i)].data());
+      stage_flat_rhs(problem, at->data(), k[static_cast<std::size_t>(i)].data(), cost);
     }
     terms.b.sum(next, y, h, k);
     cost.rhs_evals += stages;

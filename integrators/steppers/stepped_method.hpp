@@ -8,7 +8,7 @@
 // make(problem) returns the stepper for one run: a functor in any shape
 // drive_fixed_step takes (integrators/driver.hpp), e.g.
 //   void operator()(const FlatState& y, FlatState& next, double t, double h,
-//                   Cost& cost, ModelMargins& margins)
+//                   Cost& cost)  (its stages through stage_flat_rhs / stage_lie_rhs)
 // holding its stage storage, so that the step loop allocates nothing.
 #include <memory>
 #include <utility>

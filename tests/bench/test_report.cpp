@@ -84,26 +84,25 @@ double observed(const json& report, const std::string& scene, const std::string&
   return -1.0;
 }
 
-// The timed call's validity checks are part of its work: every method
-// checks each accepted state and the start once, so two methods with the
-// same steps on the same outputs carry the same number of checks.
-TEST(Report, TimedRunsCountTheirValidityChecksAlike) {
-  std::map<std::tuple<std::string, double>, std::vector<long>> checks_by_scene_and_h;
+// The timed call's validity checks are part of its work: every evaluation
+// a step makes is checked (docs/design.md), so a run's checks are its rhs
+// evaluations plus the start and the end, less the two of an adaptive
+// method's starting-step guess where it makes one; a fixed-step method's
+// checks per step are its evaluations per step.
+TEST(Report, TimedRunsCountTheirValidityChecksAsTheirEvaluations) {
+  int fixed = 0;
   for (const json& run : quick_report()["runs"]) {
     ASSERT_TRUE(run.contains("validity_checks")) << run["integrator"];
     if (run["status"] != "ok") continue;
-    const long steps = run["steps"].get<long>();
-    EXPECT_EQ(run["validity_checks"].get<long>(), steps + 1) << run["scene"] << " " << run["integrator"];
-    if (!run["adaptive"].get<bool>())
-      checks_by_scene_and_h[{run["scene"].get<std::string>(), run["h"].get<double>()}].push_back(
-          run["validity_checks"].get<long>());
+    const long checks = run["validity_checks"].get<long>(), evals = run["rhs_evals"].get<long>();
+    if (run["adaptive"].get<bool>()) {
+      EXPECT_TRUE(checks == evals + 2 || checks == evals) << run["scene"] << " " << run["integrator"];
+    } else {
+      EXPECT_EQ(checks, evals + 2) << run["scene"] << " " << run["integrator"];
+      ++fixed;
+    }
   }
-  ASSERT_FALSE(checks_by_scene_and_h.empty());
-  for (const auto& [key, checks] : checks_by_scene_and_h) {
-    ASSERT_GE(checks.size(), 2u);
-    EXPECT_EQ(*std::min_element(checks.begin(), checks.end()), *std::max_element(checks.begin(), checks.end()))
-        << std::get<0>(key) << " h = " << std::get<1>(key);
-  }
+  EXPECT_GT(fixed, 10);
 }
 
 TEST(Report, ObservedOrdersOfTheQuickPreset) {

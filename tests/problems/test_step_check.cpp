@@ -65,9 +65,9 @@ TEST(StepCheck, NaNOnlyInRotationEndsTheRunAtTheStepItAppears) {
   o.h = 1e-3;
   o.t_end = 0.1;
   int calls = 0;
-  auto step = [&](const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost, ModelMargins& margins) {
+  auto step = [&](const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost) {
     FlatState dy;
-    p.flat_rhs(y.data(), dy.data(), margins);
+    stage_flat_rhs(p, y.data(), dy.data(), cost);
     next = y + h * dy;
     ++cost.rhs_evals;
     if (++calls == 10) next[4] = kNaN;

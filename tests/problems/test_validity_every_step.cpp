@@ -1,7 +1,7 @@
-// The model's limits checked at every accepted step (MODEL.md, "Where the
+// The model's limits checked at every step (docs/model.md, "Where the
 // model stops holding"), not only at outputs: a run that crosses a limit
-// between two outputs stops at the step where it happens, every family
-// pays the same counted checks, and a start beyond a limit is bad input.
+// between two outputs stops at the step where it happens, and a start
+// beyond a limit is bad input.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -79,24 +79,8 @@ TEST(ValidityEveryStep, StopIsAtTheCrossingStep) {
   }
 }
 
-// Every accepted state and the start are checked once, by every family.
-TEST(ValidityEveryStep, ChecksAreCountedAlikeForEveryFixedStepMethod) {
-  const RunOptions o = testing::every(0.1, 1.0, 0.01);
-  for (const char* name : {"euler", "rk4", "rkmk4", "rk4-projected", "rk4-quaternion", "odeint-rk4", "gsl-rk4"}) {
-    const RunResult r = find_integrator(name).integrate(testing::valley(), o);
-    ASSERT_EQ(r.status, Status::ok) << name;
-    EXPECT_EQ(r.cost.steps, 100) << name;
-    EXPECT_EQ(r.cost.validity_checks, r.cost.steps + 1) << name;
-  }
-  for (const char* name : {"odeint-dopri5-adaptive", "gsl-rkf45-adaptive", "rkmk-dp54-adaptive"}) {
-    RunOptions a = o;
-    a.h = 0.0;
-    a.rtol = a.atol = 1e-8;
-    const RunResult r = find_integrator(name).integrate(testing::valley(), a);
-    ASSERT_EQ(r.status, Status::ok) << name;
-    EXPECT_EQ(r.cost.validity_checks, r.cost.steps + 1) << name;
-  }
-}
+// How the checks are counted (every stage's evaluation): see
+// test_validity_every_stage.cpp, EvaluationsCountedPerStepAreTheMethodsOwn.
 
 TEST(ValidityEveryStep, StartBeyondALimitIsBadInput) {
   // no gravity on a plane: no normal force at all

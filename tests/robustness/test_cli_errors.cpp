@@ -73,6 +73,11 @@ TEST(CliErrors, RunsThatStopEarlyExitThreeWithTheReason) {
        ": curvature: r * max curvature reached "},
       {"trajectory " RB_TEST_DATA "/stop-steep-bowl.json --integrator rk4 --h 0.001 --dt-out 1 --out OUT", 3,
        ": curvature: r * max curvature reached "},
+      // steps that jump the region where r kappa > 1: a stage sees it
+      {"trajectory " RB_TEST_DATA "/stop-steep-bowl.json --integrator rk4 --h 0.05 --out OUT", 3,
+       ": curvature: r * max curvature reached "},
+      {"trajectory " RB_TEST_DATA "/stop-steep-bowl.json --integrator rkmk-f78-adaptive --rtol 1e-2 --atol 1e-2 --out OUT",
+       3, ": curvature: "},
       {"trajectory " RB_TEST_DATA "/stop-nonfinite.json --integrator euler --h 0.01 --out OUT", 3,
        ": diverged: the landscape or its derivatives are not finite at the contact point\n"},
       {"trajectory plane --integrator gsl-rkf45-adaptive --rtol 1e-300 --atol 1e-300 --out OUT", 3,
