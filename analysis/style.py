@@ -30,7 +30,8 @@ LINESTYLES = ["-", "--", "-.", ":"]
 # status colours for failure bars; "ok" is drawn light so failures stand out
 STATUS_COLOURS = {
     "ok": "#d9d9d9", "diverged": "#d62728", "lift-off": "#ff7f0e", "curvature": "#bcbd22",
-    "domain": "#17becf", "step-underflow": "#9467bd", "max-steps": "#8c564b", "error": "#000000",
+    "domain": "#17becf", "step-underflow": "#9467bd", "max-steps": "#8c564b",
+    "chart-limit": "#e377c2", "error": "#000000",
 }
 
 

@@ -11,6 +11,7 @@ std::string_view status_name(Status status) {
     case Status::domain: return "domain";
     case Status::step_underflow: return "step-underflow";
     case Status::max_steps: return "max-steps";
+    case Status::chart_limit: return "chart-limit";
     case Status::error: return "error";
   }
   return "error";

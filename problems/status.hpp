@@ -12,6 +12,7 @@ enum class Status {
   domain,          // the contact point left the scene's domain
   step_underflow,  // an adaptive method's step fell below what time can resolve
   max_steps,       // the run hit its step budget
+  chart_limit,     // a Lie step's stage left the exponential chart (|u| at dexpinv's pole)
   error,           // a library error code or exception; see the message
 };
 

@@ -77,13 +77,16 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   // from the smallest step up, until the error passes the ceiling: a lucky
   // small error at a larger step beyond that is not asymptotic
   Points p;  // (log10 h, log10 error)
+  int at_floor = 0;
   for (const auto& [step, e] : all) {
     if (e > ceiling) break;
     if (std::isfinite(e) && e > 10.0 * floor && e > 0.0) p.emplace_back(std::log10(step), std::log10(e));
+    else if (std::isfinite(e)) ++at_floor;
   }
   OrderFit fit;
   fit.slope = kNaN;
   fit.points = static_cast<int>(p.size());
+  fit.at_floor = at_floor;
   if (p.size() < 2) return fit;
 
   const std::size_t min_points = static_cast<std::size_t>(kMinOrderPoints);
@@ -107,6 +110,14 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   fit.h_min = std::pow(10.0, p[lo].first);
   fit.h_max = std::pow(10.0, p[hi - 1].first);
   return fit;
+}
+
+std::string inconclusive_reason(const OrderFit& fit, int declared) {
+  if (order_verdict(fit, declared) != "inconclusive") return "";
+  if (fit.points < kMinOrderPoints || !std::isfinite(fit.slope))
+    return fit.at_floor > 0 && fit.points + fit.at_floor >= kMinOrderPoints ? "floor" : "too few points";
+  if (!(fit.slope_ci95 <= kMaxHalfWidth)) return "wide interval";
+  return "straddles";
 }
 
 std::string order_verdict(const OrderFit& fit, int declared) {

@@ -31,6 +31,7 @@ struct OrderFit {
   double slope_ci95 = 0.0; // half-width of the 95 % confidence interval of the slope
   double h_min = 0.0, h_max = 0.0;
   int points = 0;
+  int at_floor = 0;        // measured points left out for lying at or below 10 * floor
 };
 
 // A verdict needs at least this many points in its window.
@@ -54,5 +55,12 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
 // 0.2, "lower" when it lies below, "inconclusive" when it straddles that,
 // is wider than +-0.3 or rests on fewer than kMinOrderPoints points.
 std::string order_verdict(const OrderFit& fit, int declared);
+
+// Why a verdict is inconclusive: "too few points" (below kMinOrderPoints in
+// the window, or no fit), "floor" (as few, but only because points reached
+// the reference's floor: a finer ladder at large h would give them),
+// "wide interval" (half-width above 0.3) or "straddles" (the interval holds
+// declared - 0.2); empty for a verdict.
+std::string inconclusive_reason(const OrderFit& fit, int declared);
 
 }  // namespace rb
