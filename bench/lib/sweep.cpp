@@ -215,6 +215,7 @@ std::size_t output_count(const Problem& problem, const RunOptions& options) {
 }
 
 double step_taken(double h, double t_end) {
+  if (!(h > 0.0) || !(t_end > 0.0)) return h;  // refused by the method, as given
   // as drive_fixed_step divides an interval (the same slack)
   const double n = std::max(1.0, std::ceil(t_end / h - 1e-6));
   return t_end / n;

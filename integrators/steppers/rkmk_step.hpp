@@ -23,7 +23,8 @@ struct ExpCoordinates {
   // taken in these coordinates, which is the status chart-limit, not a
   // divergence of the state.
   void check_chart(const Vec3& u) const {
-    if (kind == DexpinvKind::exact && !(u.norm() < kDexpinvMaxAngle)) {
+    // a NaN stage (the state itself not finite) is no chart's edge
+    if (kind == DexpinvKind::exact && u.norm() >= kDexpinvMaxAngle) {
       char text[256];
       std::snprintf(text, sizeof text,
                     "a stage turns the ball by |u| = %.4g rad, past the exponential chart's edge (%.4g rad, "
