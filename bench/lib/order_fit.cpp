@@ -96,8 +96,16 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   max_points = std::max<std::size_t>(2, max_points);
   std::size_t hi = std::min(p.size(), lo + std::min(min_points, max_points));
   while (hi < p.size() && hi - lo < max_points) {
-    const double slope = least_squares(p, lo, hi).slope;
-    if (std::abs(local_slope(p, hi - 1) - slope) > std::max(0.15, 0.05 * std::abs(slope))) break;
+    const LineFit window = least_squares(p, lo, hi);
+    const double tolerance = std::max(0.15, 0.05 * std::abs(window.slope));
+    // clean data: the next point's local slope agrees with the window's;
+    // noisy data (an interval wider than that): the fit with the next point
+    // stays inside the window's own interval, so a longer window narrows
+    // the interval without moving the slope out of it
+    const bool agrees = std::abs(local_slope(p, hi - 1) - window.slope) <= tolerance;
+    const bool within = window.slope_ci95 > tolerance &&
+                        std::abs(least_squares(p, lo, hi + 1).slope - window.slope) <= window.slope_ci95;
+    if (!agrees && !within) break;
     ++hi;
   }
   const LineFit l = least_squares(p, lo, hi);

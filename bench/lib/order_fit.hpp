@@ -45,9 +45,12 @@ inline constexpr int kMinOrderPoints = 4;
 // smallest h is dropped while its local slope is below half that of the
 // rest (a rounding plateau), the window takes the kMinOrderPoints smallest
 // steps left, and a larger step joins it only while the local slope up to
-// it stays within max(0.15, 0.05 p) of the window's slope p, up to
-// max_points (below kMinOrderPoints: that many, a slope without a verdict).
-// So pre-asymptotic large steps, whose slope drifts, stay out.
+// it stays within max(0.15, 0.05 p) of the window's slope p or, where the
+// window's 95 % interval is wider than that (noisy errors), while the fit
+// with it stays inside that interval; up to max_points (below
+// kMinOrderPoints: that many, a slope without a verdict). So
+// pre-asymptotic large steps, whose slope drifts, stay out, and a verdict
+// rests on a slope its own interval does not contradict.
 OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& error, double floor = 0.0,
                    double ceiling = 0.1, std::size_t max_points = 6);
 

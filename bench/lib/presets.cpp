@@ -34,8 +34,8 @@ SweepSpec preset(const std::string& name) {
   SweepSpec s;
   s.preset = name;
   if (name == "quick") {
-    // CI: a handful of methods, two scenes, short runs
-    s.scenes = {"valley-sideways", "bowl-planar"};
+    // CI: a handful of methods, three scenes (one where R feeds back), short runs
+    s.scenes = {"valley-sideways", "bowl-planar", "chaplygin-valley"};
     s.integrators = {"euler", "exp-euler", "rk4", "rkmk4", "rkmk4-seminar", "cf4", "cg4a", "odeint-rk4", "gsl-rk4",
                      "odeint-dopri5-adaptive", "gsl-rkf45-adaptive"};
     s.hs = powers_of_two(4, 9);

@@ -4,7 +4,11 @@ ratios as the synthetic model says (computed here), pairs from the
 methods' tableau facts (a user's rk-X / rkmk-X too), the spread over
 repeats, the verdict counts, and the best-of-family pick by cost."""
 import copy
+import json
 import math
+import os
+import subprocess
+import tempfile
 import unittest
 
 from analysis import costs, figures_precision, findings, pairs, summary
@@ -148,6 +152,32 @@ class EitherError(unittest.TestCase):
         rows = {r[0]: r for r in md.parse_table(text, "### Cost to accuracy — plane")}
         a, _ = model_cost("plane", "rkmk4", "rhs", 1e-6 / 1.5)
         self.assertTrue(math.isclose(md.as_number(rows["rkmk4"][3]), a, rel_tol=REL))
+
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ROLLBENCH = os.environ.get("RB_ROLLBENCH", os.path.join(ROOT, "build", "release", "rollbench"))
+
+
+@unittest.skipUnless(os.path.exists(ROLLBENCH), "no rollbench binary (RB_ROLLBENCH)")
+class UserTableauEndToEnd(unittest.TestCase):
+    def test_a_tableau_file_gives_a_pair_in_the_findings(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "r.json")
+            done = subprocess.run([ROLLBENCH, "run", "--preset", "quick", "--no-stability", "--scenes",
+                                   "plane,chaplygin-valley", "--tableau",
+                                   os.path.join(ROOT, "examples", "tableaux", "ralston3.json"), "--integrators",
+                                   "rk-ralston3,rkmk-ralston3", "--h", "2^-4..2^-9", "--repeats", "2", "--out", out],
+                                  capture_output=True, text=True)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            with open(out, encoding="utf-8") as f:
+                report = json.load(f)
+        text = summary.summary_markdown(report)
+        rows = {(r[0], r[2]): r for r in md.parse_table(text, "### Same tableau: flat / Lie time ratio")}
+        self.assertEqual(set(rows), {("plane", "rk-ralston3 / rkmk-ralston3"),
+                                     ("chaplygin-valley", "rk-ralston3 / rkmk-ralston3")})
+        self.assertEqual(rows[("chaplygin-valley", "rk-ralston3 / rkmk-ralston3")][1], "R feeds back")
+        self.assertEqual(rows[("plane", "rk-ralston3 / rkmk-ralston3")][1], "homogeneous")
+        self.assertEqual(rows[("plane", "rk-ralston3 / rkmk-ralston3")][3], "ralston3")
 
 
 if __name__ == "__main__":

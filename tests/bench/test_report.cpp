@@ -127,7 +127,7 @@ TEST(Report, ObservedOrdersOfTheQuickPreset) {
 
 TEST(Report, ReferencesAgreeWithTheirCrossCheck) {
   const json& r = quick_report();
-  ASSERT_EQ(r["references"].size(), 2u);
+  ASSERT_EQ(r["references"].size(), 3u);
   for (const json& ref : r["references"]) {
     EXPECT_LT(ref["error"].get<double>(), 1e-10) << ref["scene"];
     if (ref["scene"] == "bowl-planar") {
