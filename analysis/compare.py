@@ -7,7 +7,10 @@ For each (scene, integrator, step size or tolerance) in both reports: the
 change in status, error, drift and wall time, and per (scene, integrator)
 the change in observed order. Time counts as changed only when a
 Mann–Whitney U test (SciPy) over the raw samples gives p < 0.01 and the medians
-differ by more than 5 %, so that timing noise is not reported as change.
+differ by more than 5 %, so that timing noise is not reported as change;
+with too few timed repeats for that test to reach p < 0.01 at all (its
+smallest p with n and m samples is 2 / C(n + m, n): 5 against 5 are
+needed), it says that no timing change can be detected, not "No change".
 Errors and drift are deterministic: a relative change over 5 % counts,
 except between values that both sit at rounding level. Prints a table of
 the changes (every row with --all); exit status 0 (2 for an unreadable report).

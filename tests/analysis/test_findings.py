@@ -166,7 +166,7 @@ class UserTableauEndToEnd(unittest.TestCase):
             done = subprocess.run([ROLLBENCH, "run", "--preset", "quick", "--no-stability", "--scenes",
                                    "plane,chaplygin-valley", "--tableau",
                                    os.path.join(ROOT, "examples", "tableaux", "ralston3.json"), "--integrators",
-                                   "rk-ralston3,rkmk-ralston3", "--h", "2^-4..2^-9", "--repeats", "2", "--out", out],
+                                   "rk-ralston3,rkmk-ralston3", "--h", "2^-5..2^-12", "--repeats", "2", "--out", out],
                                   capture_output=True, text=True)
             self.assertEqual(done.returncode, 0, done.stderr)
             with open(out, encoding="utf-8") as f:
