@@ -274,7 +274,10 @@ RunRecord run_task(const SweepScene& s, const SweepTask& task, long max_steps) {
   } else {
     const RunResult on_grid = integrate_safely(m, s.problem, grid);
     measure_grid(s, on_grid, r);
-    r.error_max_source = {on_grid.cost.steps == run.cost.steps && on_grid.cost.rejected == run.cost.rejected,
+    // the same steps end in the same state to the bit; equal counts alone
+    // are not enough (GSL's implicit pairs land on outputs with as many steps)
+    r.error_max_source = {on_grid.cost.steps == run.cost.steps && on_grid.cost.rejected == run.cost.rejected &&
+                              on_grid.final_state == run.final_state,
                           on_grid.cost.steps};
     if (!r.error_max_source.same_steps) {
       // the grid run stepped differently (a method that lands on each
