@@ -7,7 +7,10 @@ For each (scene, integrator, step size or tolerance) in both reports: the
 change in status, error, drift and wall time, and per (scene, integrator)
 the change in observed order. Time counts as changed only when a
 Mann–Whitney U test (SciPy) over the raw samples gives p < 0.01 and the medians
-differ by more than 5 %, so that timing noise is not reported as change.
+differ by more than 5 %, so that timing noise is not reported as change;
+with too few timed repeats for that test to reach p < 0.01 at all (its
+smallest p with n and m samples is 2 / C(n + m, n): 5 against 5 are
+needed), it says that no timing change can be detected, not "No change".
 Errors and drift are deterministic: a relative change over 5 % counts,
 except between values that both sit at rounding level. Prints a table of
 the changes (every row with --all); exit status 0 (2 for an unreadable report).
@@ -64,6 +67,18 @@ def _error_value(run, component):
     return rp.error(run, component)
 
 
+def smallest_p(n, m):
+    """The smallest two-sided p an exact Mann–Whitney test can give with n and m samples: 2 / C(n + m, n)."""
+    if n < 1 or m < 1:
+        return 1.0
+    return min(1.0, 2.0 / math.comb(n + m, n))
+
+
+def detectable(a, b):
+    """Whether the two runs' timed repeats are enough for a time change to pass p < ALPHA at all."""
+    return smallest_p(rp.samples(a).size, rp.samples(b).size) < ALPHA
+
+
 def time_change(a, b):
     """(ratio of medians B / A, p, changed) from the raw samples."""
     sa, sb = rp.samples(a), rp.samples(b)
@@ -101,7 +116,8 @@ def compare_runs(a, b):
     return {"key": run_key(a), "status": (a.get("status"), b.get("status")),
             "worst": (rp.error(a, "worst"), rp.error(b, "worst")),
             "energy": (rp.num((a.get("drift") or {}).get("energy")), rp.num((b.get("drift") or {}).get("energy"))),
-            "time": (rp.wall(a), rp.wall(b)), "ratio": ratio, "p": p, "changes": changes}
+            "time": (rp.wall(a), rp.wall(b)), "ratio": ratio, "p": p, "changes": changes,
+            "detectable": detectable(a, b), "repeats": (rp.samples(a).size, rp.samples(b).size)}
 
 
 def compare_orders(a, b):
@@ -144,7 +160,14 @@ def format_markdown(result, name_a="A", name_b="B", every_row=False):
              f"raw samples) and a median change over {TIME_RATIO:.0%}; error and drift changes over "
              f"{VALUE_RATIO:.0%}; order changes over {ORDER_DELTA}.", ""]
     changes = result["changes"]
-    tested = sum(1 for r in result["runs"] if math.isfinite(r["p"]))
+    blind = [r for r in result["runs"] if not r.get("detectable", True)]
+    if blind:
+        fewest = min(min(r["repeats"]) for r in blind)
+        lines += [f"Timing: {len(blind)} of {len(result['runs'])} runs have too few timed repeats (as few as "
+                  f"{fewest}) for a Mann–Whitney test to reach p < {ALPHA} (with n and m samples its smallest p is "
+                  f"2 / C(n + m, n): 5 against 5 are needed): no timing change can be detected for them; run "
+                  "both sweeps with more --repeats.", ""]
+    tested = sum(1 for r in result["runs"] if math.isfinite(r["p"]) and r.get("detectable", True))
     if tested:
         # many tests at once: a few "changes" can be chance (or a machine whose load changed between runs)
         lines += [f"Timing: {tested} rank tests; at p < {ALPHA} about {tested * ALPHA:.1f} would pass by chance "
@@ -154,7 +177,14 @@ def format_markdown(result, name_a="A", name_b="B", every_row=False):
         lines += _table(["scene", "integrator", "setting", "what", "change"],
                         [[*key, ""][:3] + [kind, text] for key, kind, text in changes])
     else:
-        lines += ["No change: no significant difference in status, error, drift, order or time."]
+        if blind and len(blind) == len(result["runs"]):
+            lines += ["No change in status, error, drift or order; no timing change can be detected (too few "
+                      "timed repeats, above)."]
+        elif blind:
+            lines += ["No change in status, error, drift or order, nor in time where it can be detected (the runs "
+                      "above excepted)."]
+        else:
+            lines += ["No change: no significant difference in status, error, drift, order or time."]
     lines.append("")
     for label, keys in (("only in " + name_a, result["only_a"]), ("only in " + name_b, result["only_b"])):
         if keys:

@@ -76,16 +76,30 @@ def pareto_front(points):
     return front
 
 
+BEST_HOW = ("the member with the lowest mean log10 cost to reach the targets 10^(-k/4) across the family's "
+            "accuracy range (from the loosest error every member's cheapest run has to the family's smallest "
+            "error); a target a member never reaches counts as ten times the family's largest cost")
+
+
 def best_of_family(runs, names, cost_of, metric, floor):
-    """The member of a family with the most points on the family's Pareto front (ties: first name)."""
-    points = []
-    for name in names:
-        points += [(c, e, name) for c, e, _ in costs.curve([r for r in runs if r["integrator"] == name],
-                                                           cost_of, metric, floor)]
-    if not points:
+    """The member of a family with the lowest cost over the family's accuracy range (BEST_HOW; ties: first name)."""
+    curves = {n: costs.curve([r for r in runs if r["integrator"] == n], cost_of, metric, floor) for n in names}
+    curves = {n: c for n, c in curves.items() if c}
+    if not curves:
         return None
-    owners = [points[i][2] for i in pareto_front(points)]
-    return max(names, key=lambda n: (owners.count(n), -names.index(n)))
+    loosest = min(max(e for _, e, _ in c) for c in curves.values())
+    tightest = min(e for c in curves.values() for _, e, _ in c)
+    penalty = math.log10(max(p[0] for c in curves.values() for p in c)) + 1.0
+    k_hi, k_lo = math.floor(-4 * math.log10(loosest)), math.ceil(-4 * math.log10(tightest))
+    targets = [10.0 ** (-k / 4) for k in range(min(k_hi, k_lo), max(k_hi, k_lo) + 1)] or [loosest]
+
+    def score(name):
+        total = 0.0
+        for target in targets:
+            cost, _ = costs.cost_to_reach(curves[name], target)
+            total += math.log10(cost) if math.isfinite(cost) and cost > 0 else penalty
+        return total / len(targets)
+    return min(curves, key=lambda n: (score(n), names.index(n)))
 
 
 def work_precision_best(report, scene, palette, metric=rp.DEFAULT_METRIC):
@@ -106,7 +120,7 @@ def work_precision_best(report, scene, palette, metric=rp.DEFAULT_METRIC):
                          label=f"{family}: {best}")
         _finish_axes(ax, scene, metric, kind, floor, "best of each family, ")
     axes[0].set_ylabel(rp.METRIC_LABELS[metric])
-    legend_right(axes[1], title="family: its method with the most\npoints on the family's Pareto front")
+    legend_right(axes[1], title="family: its method with the lowest\ncost over the family's accuracy range")
     return fig
 
 

@@ -1,4 +1,5 @@
-"""index.html: every figure and summary.md in one page.
+"""index.html: summary.md's findings, one table of contents, every figure
+(the best of each family before all methods) and the rest of summary.md.
 
 summary.md is rendered here (headings, lists, tables, paragraphs, `code`
 and **bold**: what summary.py writes); everything is HTML-escaped. A small
@@ -25,6 +26,7 @@ figure { margin: 1em 0 2em; }
 def inline(text):
     text = html.escape(text, quote=False)
     text = re.sub(r"`([^`]+)`", r"<code>\1</code>", text)
+    text = re.sub(r"\[([^\]]+)\]\((#[a-z0-9-]+)\)", r'<a href="\2">\1</a>', text)
     return re.sub(r"\*\*([^*]+)\*\*", r"<strong>\1</strong>", text)
 
 
@@ -57,7 +59,7 @@ def markdown_to_html(markdown):
         if heading:
             flush()
             level = len(heading.group(1))
-            out.append(f"<h{level}>{inline(heading.group(2))}</h{level}>")
+            out.append(f"<h{level} id=\"{slug(heading.group(2))}\">{inline(heading.group(2))}</h{level}>")
         elif line.startswith("|"):
             table.append(line)
         elif line.startswith("- "):
@@ -70,13 +72,49 @@ def markdown_to_html(markdown):
     return "\n".join(out)
 
 
+def slug(heading):
+    """The anchor of a heading (as summary.py's contents link to it)."""
+    return re.sub(r"[^a-z0-9]+", "-", heading.lower()).strip("-")
+
+
+# figures in this order: the answer per family before every method's curve
+FIGURE_ORDER = ("work-precision-best-", "work-precision-", "convergence-", "tolerance-", "drift-")
+
+
+def ordered_figures(names):
+    def rank(name):
+        return next((i for i, p in enumerate(FIGURE_ORDER) if name.startswith(p)), len(FIGURE_ORDER))
+    return sorted(names, key=lambda n: (rank(n), names.index(n)))
+
+
+def split_summary(markdown):
+    """(findings, rest): the '## Findings' section, and everything after summary.md's own contents."""
+    lines = markdown.splitlines()
+    heads = [i for i, line in enumerate(lines) if line.startswith("## ")]
+    if not heads or lines[heads[0]] != "## Findings":
+        return "", markdown
+    end = heads[1] if len(heads) > 1 else len(lines)
+    rest = lines[end:]
+    if rest and rest[0] == "## Contents":
+        later = [i for i, line in enumerate(rest) if line.startswith("## ")][1:]
+        rest = rest[later[0]:] if later else []
+    return "\n".join(lines[heads[0]:end]), "\n".join(rest)
+
+
 def index_html(figure_names, summary_markdown, title="rollbench results"):
-    """The page: the figures (relative links, in the given order), then the summary."""
+    """The page: the findings, one table of contents, the figures, then the rest of the summary."""
+    findings, rest = split_summary(summary_markdown)
+    figures = ordered_figures(list(figure_names))
+    sections = [line[3:] for line in rest.splitlines() if line.startswith("## ")]
+    contents = "".join(f"<li><a href=\"#{slug(h)}\">{inline(h)}</a></li>" for h in ["Figures"] + sections)
     parts = ["<!DOCTYPE html>", "<html><head><meta charset=\"utf-8\">", f"<title>{html.escape(title)}</title>",
-             STYLE, MARK_IMAGES, "</head><body>", f"<h1>{html.escape(title)}</h1>", "<h2>Figures</h2>"]
-    for name in figure_names:
+             STYLE, MARK_IMAGES, "</head><body>", f"<h1>{html.escape(title)}</h1>"]
+    if findings:
+        parts.append(markdown_to_html(findings))
+    parts += ["<h2 id=\"contents\">Contents</h2>", f"<ul>{contents}</ul>", "<h2 id=\"figures\">Figures</h2>"]
+    for name in figures:
         link = html.escape(name, quote=True)
         parts.append(f"<figure><img src=\"{link}\" alt=\"{link}\"><figcaption>{html.escape(name)}</figcaption>"
                      "</figure>")
-    parts += ["<h2>Summary (summary.md)</h2>", markdown_to_html(summary_markdown), "</body></html>"]
+    parts += [markdown_to_html(rest), "</body></html>"]
     return "\n".join(parts) + "\n"

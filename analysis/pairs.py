@@ -7,9 +7,29 @@ from analysis import costs
 from analysis import markdown as md
 from analysis import report as rp
 
-# (flat, Lie): same coefficients, same step-size control
-PAIRS = (("rk4", "rkmk4"), ("odeint-fehlberg78", "rkmk8"),
-         ("odeint-fehlberg78-adaptive", "rkmk-f78-adaptive"), ("odeint-dopri5-adaptive", "rkmk-dp54-adaptive"))
+
+
+def tableau_pairs(runs):
+    """(flat, Lie, tableau) of the methods among the runs that share a Butcher tableau.
+
+    From each run's MethodInfo facts (`tableau`, `on_group`, `adaptive`), not
+    from a list kept here: a method on the flat view and one on SO(3) with
+    the same tableau and the same adaptivity are a pair, so a user's
+    `--tableau` file (rk-X, rkmk-X) is paired like the shipped ones. In
+    order of first appearance.
+    """
+    sides = {}
+    for r in runs:
+        tableau = r.get("tableau")
+        if not tableau:
+            continue
+        key = (tableau, bool(r.get("adaptive")))
+        side = sides.setdefault(key, ([], []))[1 if r.get("on_group") else 0]
+        if r["integrator"] not in side:
+            side.append(r["integrator"])
+    return [(flat, lie, tableau) for (tableau, _), (flats, lies) in sides.items() for flat in flats for lie in lies]
+
+
 HEADING = "## Same tableau, flat vs Lie"
 
 
@@ -35,12 +55,9 @@ def reached(runs, metric, floor, target):
 def pair_rows(report, scene, metric=rp.DEFAULT_METRIC):
     rows = []
     runs = rp.runs(report, scene)
-    present = set(rp.integrators(runs))
     families = rp.families(report)
     floor = rp.floor(report, scene)
-    for flat, lie in PAIRS:
-        if flat not in present or lie not in present:
-            continue
+    for flat, lie, _ in tableau_pairs(runs):
         for target in costs.TARGETS:
             for name in (flat, lie):
                 mine = [r for r in runs if r["integrator"] == name]
@@ -68,6 +85,41 @@ def pairs_section(report, metric=rp.DEFAULT_METRIC):
         lines += md.table(["pair", f"{metric} error", "integrator", "family", "time (s)", "rhs evals",
                            "rotation error there (rad)"], rows) + [""]
     if not any_rows:
-        lines += ["No same-tableau pair ran in this report: "
-                  + ", ".join(f"{a} / {b}" for a, b in PAIRS) + ".", ""]
+        lines += ["No same-tableau pair ran in this report (a pair: a flat-view and a Lie-group method with the "
+                  "same `tableau` and adaptivity in the runs).", ""]
     return lines
+
+
+def _sample_cost(k):
+    """Cost of a run in timed repeat k (its last repeat where it stopped repeating earlier)."""
+    def cost(run):
+        samples = rp.samples(run)
+        return float(samples[min(k, samples.size - 1)]) if samples.size else rp.wall(run)
+    return cost
+
+
+def time_ratio(runs, flat, lie, metric, floor, target):
+    """Flat/Lie wall time to reach target: (median, low, high, repeats, bound) over the timed repeats.
+
+    Repeat k reads both methods' work-precision curves with every run's k-th
+    timed sample (costs.HOW), so the spread is that of the timing, measured
+    side by side; bound is "≤"/"≥" when a side's cheapest run is already
+    there (its cost an upper bound). NaNs when a side never gets there.
+    """
+    mine = {n: [r for r in runs if r["integrator"] == n] for n in (flat, lie)}
+    repeats = max((rp.samples(r).size for n in mine for r in mine[n]), default=0)
+    ratios, bound = [], ""
+    for k in range(max(1, repeats)):
+        cost = _sample_cost(k)
+        (a, bound_a), (b, bound_b) = (costs.cost_to_reach(costs.curve(mine[n], cost, metric, floor), target)
+                                      for n in (flat, lie))
+        if math.isfinite(a) and math.isfinite(b) and b > 0:
+            ratios.append(a / b)
+            # the flat side's cost an upper bound: so is the ratio; the Lie side's: a lower bound
+            bound = {("≤", ""): "≤", ("", "≤"): "≥", ("≤", "≤"): "~"}.get((bound_a, bound_b), "")
+    if not ratios:
+        return math.nan, math.nan, math.nan, repeats, ""
+    ratios.sort()
+    n = len(ratios)
+    median = ratios[n // 2] if n % 2 else 0.5 * (ratios[n // 2 - 1] + ratios[n // 2])
+    return median, ratios[0], ratios[-1], repeats, bound

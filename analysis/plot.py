@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Figures, summary.md and index.html from a rollbench report.
 
-    analysis/plot.py REPORT.json --out DIR [--metric worst|contact|centre|omega|rotation]
+    analysis/plot.py REPORT.json --out DIR [--metric worst|contact|centre|omega|rotation] [--errors end|max]
                      [--perf PERF.json] [--trajectories DIR] [--ball DIR] [--scenes DIR]
                      [--rollbench PATH]
 
@@ -123,6 +123,9 @@ def main(argv=None):
     parser.add_argument("--out", required=True, help="folder for the figures, summary.md and index.html")
     parser.add_argument("--metric", choices=rp.METRICS, default=rp.DEFAULT_METRIC,
                         help="accuracy axis of the work-precision figures and cost tables (default: %(default)s)")
+    parser.add_argument("--errors", choices=sorted(rp.ERROR_KEYS), default="end",
+                        help="errors at t_end (end) or the largest over the timed run's steps (max) "
+                             "(default: %(default)s)")
     parser.add_argument("--perf", help="Google Benchmark JSON (--benchmark_out) for ns-per-step.png")
     parser.add_argument("--trajectories", help="folder of <scene>.csv trajectories (rollbench trajectory)")
     parser.add_argument("--ball", help="folder of euler.csv, rk4.csv, rkmk4.csv trajectories for ball-deforms.png")
@@ -130,6 +133,7 @@ def main(argv=None):
     parser.add_argument("--rollbench", default=landscape.DEFAULT_ROLLBENCH,
                         help="the rollbench binary that evaluates the landscapes (default: %(default)s)")
     args = parser.parse_args(argv)
+    rp.use_errors(args.errors)
     try:
         report = rp.load(args.report)
     except rp.ReportError as e:

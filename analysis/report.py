@@ -176,12 +176,24 @@ def floor(report, scene):
     return value
 
 
+# which of a run's errors the figures and tables read: "error" (at t_end) or
+# "error_max" (the largest over the timed run's steps); plot.py --errors
+ERROR_KEYS = {"end": "error", "max": "error_max"}
+_error_key = "error"
+
+
+def use_errors(kind):
+    """Read the errors at t_end ("end", the default) or the largest over the run ("max") from now on."""
+    global _error_key
+    _error_key = ERROR_KEYS[kind]
+
+
 def error(run, component=DEFAULT_METRIC):
-    return num((run.get("error") or {}).get(component))
+    return num((run.get(_error_key) or {}).get(component))
 
 
 def below_floor(run, component=DEFAULT_METRIC):
-    return component in ((run.get("error") or {}).get("below_floor") or [])
+    return component in ((run.get(_error_key) or {}).get("below_floor") or [])
 
 
 def wall(run):

@@ -3,7 +3,9 @@ cost to reach given accuracies, same-tableau pairs, tolerance
 proportionality, stability, and every failure."""
 import math
 
-from analysis import costs, pairs
+import re
+
+from analysis import costs, findings, pairs
 from analysis import markdown as md
 from analysis import report as rp
 
@@ -96,9 +98,12 @@ def stability_section(report):
     entries = rp.stable_steps(report)
     if not entries:
         return lines + ["The report has no stability study.", ""]
-    lines += ["Largest step h such that this and every smaller tested step stay finite and bounded; "
-              "\"none\": no tested step passes. The rotation defect ‖RᵀR − I‖_F at that step is shown "
-              "beside it and is not a pass criterion.", ""]
+    bound = _rotation_bound(entries)
+    lines += ["Largest step h such that this and every smaller tested step keep the whole state bounded over the "
+              "run: it reaches the end, the energy error stays within its bound and the rotation defect "
+              f"‖RᵀR − I‖_F stays below {md.fmt(bound)} (the largest over the run, shown at that step); "
+              "\"none\": no tested step passes. Where a larger step failed, the first failure's status "
+              "(`chart-limit`: a Lie step past the exponential chart's edge) and why.", ""]
     rows = []
     for e in entries:
         h = rp.stable_h(e)
@@ -106,9 +111,32 @@ def stability_section(report):
         tested = [t for t in tested if math.isfinite(t)]
         span = f"{min(tested):.3g} – {max(tested):.3g} ({len(tested)})" if tested else "—"
         rows.append([e["scene"], e["integrator"], md.fmt(h) if math.isfinite(h) else "none",
-                     md.fmt(rp.num(e.get("rotation_defect"))), span])
+                     md.fmt(rp.num(e.get("rotation_defect"))), span, _first_failure(e, bound)])
     return lines + md.table(["scene", "integrator", "largest stable h (s)", "rotation defect there",
-                             "tested h (count)"], rows) + [""]
+                             "tested h (count)", "next step fails by"], rows) + [""]
+
+
+def _rotation_bound(entries):
+    for e in entries:
+        value = rp.num((e.get("thresholds") or {}).get("rotation_defect"))
+        if math.isfinite(value):
+            return value
+    return 1e-2
+
+
+def _first_failure(entry, bound):
+    """Why the first unstable rung failed: its status, or which bound it broke."""
+    for t in entry.get("tried") or []:
+        if t.get("stable", True):
+            continue
+        status = t.get("status", "ok")
+        if status != "ok":
+            return f"{status} (h = {md.fmt(rp.num(t.get('h')))})"
+        defect = rp.num(t.get("rotation_defect"))
+        if math.isfinite(defect) and defect >= bound:
+            return f"rotation defect {md.fmt(defect)} (h = {md.fmt(rp.num(t.get('h')))})"
+        return f"energy error {md.fmt(rp.num(t.get('energy_error')))} (h = {md.fmt(rp.num(t.get('h')))})"
+    return "— (stable to the top)" if entry.get("at_limit") else "—"
 
 
 def failures_section(report):
@@ -131,14 +159,15 @@ def failures_section(report):
 def header_section(report, metric):
     machine = report.get("machine") or {}
     build = report.get("build") or {}
-    lines = ["# rollbench summary", "",
-             f"- created: {report.get('created', '—')}, commit {report.get('git', '—')}, "
+    lines = [f"- created: {report.get('created', '—')}, commit {report.get('git', '—')}, "
              f"preset {report.get('preset', '—')}",
              f"- machine: {machine.get('cpu', '—')}, {machine.get('cores', '—')} cores, {machine.get('os', '—')}",
              f"- build: {build.get('compiler', '—')} {build.get('type', '')}"
              + (f" `{build['flags']}`" if build.get("flags") else ""),
              f"- runs: {len(rp.runs(report))}, scenes: {', '.join(rp.scenes(report)) or '—'}",
-             f"- accuracy metric of the cost tables: {metric} ({rp.METRIC_LABELS[metric]})", ""]
+             f"- accuracy metric of the cost tables: {metric} ({rp.METRIC_LABELS[metric]}), read from each run's "
+             f"`{rp._error_key}`" + (" (at t_end)" if rp._error_key == "error" else
+                                      " (the largest over the timed run's steps)"), ""]
     refs = rp.section_entries(report, "references")
     if refs:
         rows = [[r["scene"], r.get("kind", "—"), r.get("method", "—"), r.get("cross_check", "—"),
@@ -148,8 +177,34 @@ def header_section(report, metric):
     return lines
 
 
+def slug(heading):
+    """The anchor of a heading: lower case, words joined by '-' (what index.html's ids are)."""
+    return re.sub(r"[^a-z0-9]+", "-", heading.lower()).strip("-")
+
+
+CONTENTS = "## Contents"
+
+
+def contents(lines):
+    """A list of links to the level-2 sections in lines."""
+    heads = [line[3:] for line in lines if line.startswith("## ")]
+    return [CONTENTS, ""] + [f"- [{h}](#{slug(h)})" for h in heads] + [""]
+
+
+def failure_counts(report):
+    """'N ok, M diverged, ...' over the runs: every status named as the runner wrote it."""
+    counts = {}
+    for r in rp.runs(report):
+        counts[r.get("status", "?")] = counts.get(r.get("status", "?"), 0) + 1
+    return ", ".join(f"{n} {s}" for s, n in sorted(counts.items(), key=lambda x: (x[0] != "ok", -x[1])))
+
+
 def summary_markdown(report, metric=rp.DEFAULT_METRIC):
-    lines = (header_section(report, metric) + orders_section(report) + costs.cost_section(report, metric)
-             + pairs.pairs_section(report, metric) + tolerance_section(report) + stability_section(report)
-             + failures_section(report))
+    top = ["# rollbench summary", ""] + findings.findings_section(report, metric)
+    body = (header_section(report, metric) + orders_section(report) + costs.cost_section(report, metric)
+            + pairs.pairs_section(report, metric) + tolerance_section(report) + stability_section(report)
+            + failures_section(report))
+    provenance = ["## Provenance", ""] + body[:body.index("")] + [f"- run statuses: {failure_counts(report)}", ""]
+    body = provenance + body[body.index("") + 1:]
+    lines = top + contents(body) + body
     return "\n".join(lines).rstrip() + "\n"

@@ -50,6 +50,11 @@ struct MethodInfo {
   bool needs_jacobian = false;
   std::string controller{};   // the default step-size controller: "constant", "library", "pi", ...
   std::string description{};  // one line for `rollbench list`
+  // The Butcher tableau the method steps with, named where the flat view and
+  // the Lie-group view both implement it (the analysis pairs methods of one
+  // tableau and adaptivity, flat against Lie); empty: the method has no pair.
+  std::string tableau{};
+  bool on_group = false;      // R stays on SO(3) by construction (a Lie-group method)
 };
 
 // Where the stages of the step being taken went beyond the model's limits

@@ -14,6 +14,7 @@ std::string_view status_name(Status status) {
     case Status::crashed: return "crashed";
     case Status::timeout: return "timeout";
     case Status::off_group: return "off-group";
+    case Status::chart_limit: return "chart-limit";
     case Status::error: return "error";
   }
   return "error";

@@ -15,6 +15,7 @@ enum class Status {
   crashed,         // an isolated plug-in's child process died (a signal, an exit without a result)
   timeout,         // an isolated plug-in's run passed its wall-clock limit and was killed
   off_group,       // a Lie-view plug-in returned R off SO(3): ||R^T R - I||_F > 1e-6
+  chart_limit,     // a Lie step's stage left the exponential chart (|u| at dexpinv's pole)
   error,           // a library error code or exception; see the message
 };
 

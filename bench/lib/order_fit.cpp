@@ -77,13 +77,16 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   // from the smallest step up, until the error passes the ceiling: a lucky
   // small error at a larger step beyond that is not asymptotic
   Points p;  // (log10 h, log10 error)
+  int at_floor = 0;
   for (const auto& [step, e] : all) {
     if (e > ceiling) break;
     if (std::isfinite(e) && e > 10.0 * floor && e > 0.0) p.emplace_back(std::log10(step), std::log10(e));
+    else if (std::isfinite(e)) ++at_floor;
   }
   OrderFit fit;
   fit.slope = kNaN;
   fit.points = static_cast<int>(p.size());
+  fit.at_floor = at_floor;
   if (p.size() < 2) return fit;
 
   const std::size_t min_points = static_cast<std::size_t>(kMinOrderPoints);
@@ -93,8 +96,16 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   max_points = std::max<std::size_t>(2, max_points);
   std::size_t hi = std::min(p.size(), lo + std::min(min_points, max_points));
   while (hi < p.size() && hi - lo < max_points) {
-    const double slope = least_squares(p, lo, hi).slope;
-    if (std::abs(local_slope(p, hi - 1) - slope) > std::max(0.15, 0.05 * std::abs(slope))) break;
+    const LineFit window = least_squares(p, lo, hi);
+    const double tolerance = std::max(0.15, 0.05 * std::abs(window.slope));
+    // clean data: the next point's local slope agrees with the window's;
+    // noisy data (an interval wider than that): the fit with the next point
+    // stays inside the window's own interval, so a longer window narrows
+    // the interval without moving the slope out of it
+    const bool agrees = std::abs(local_slope(p, hi - 1) - window.slope) <= tolerance;
+    const bool within = window.slope_ci95 > tolerance &&
+                        std::abs(least_squares(p, lo, hi + 1).slope - window.slope) <= window.slope_ci95;
+    if (!agrees && !within) break;
     ++hi;
   }
   const LineFit l = least_squares(p, lo, hi);
@@ -107,6 +118,14 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   fit.h_min = std::pow(10.0, p[lo].first);
   fit.h_max = std::pow(10.0, p[hi - 1].first);
   return fit;
+}
+
+std::string inconclusive_reason(const OrderFit& fit, int declared) {
+  if (order_verdict(fit, declared) != "inconclusive") return "";
+  if (fit.points < kMinOrderPoints || !std::isfinite(fit.slope))
+    return fit.at_floor > 0 && fit.points + fit.at_floor >= kMinOrderPoints ? "floor" : "too few points";
+  if (!(fit.slope_ci95 <= kMaxHalfWidth)) return "wide interval";
+  return "straddles";
 }
 
 std::string order_verdict(const OrderFit& fit, int declared) {

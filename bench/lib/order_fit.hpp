@@ -31,6 +31,7 @@ struct OrderFit {
   double slope_ci95 = 0.0; // half-width of the 95 % confidence interval of the slope
   double h_min = 0.0, h_max = 0.0;
   int points = 0;
+  int at_floor = 0;        // measured points left out for lying at or below 10 * floor
 };
 
 // A verdict needs at least this many points in its window.
@@ -44,9 +45,12 @@ inline constexpr int kMinOrderPoints = 4;
 // smallest h is dropped while its local slope is below half that of the
 // rest (a rounding plateau), the window takes the kMinOrderPoints smallest
 // steps left, and a larger step joins it only while the local slope up to
-// it stays within max(0.15, 0.05 p) of the window's slope p, up to
-// max_points (below kMinOrderPoints: that many, a slope without a verdict).
-// So pre-asymptotic large steps, whose slope drifts, stay out.
+// it stays within max(0.15, 0.05 p) of the window's slope p or, where the
+// window's 95 % interval is wider than that (noisy errors), while the fit
+// with it stays inside that interval; up to max_points (below
+// kMinOrderPoints: that many, a slope without a verdict). So
+// pre-asymptotic large steps, whose slope drifts, stay out, and a verdict
+// rests on a slope its own interval does not contradict.
 OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& error, double floor = 0.0,
                    double ceiling = 0.1, std::size_t max_points = 6);
 
@@ -54,5 +58,12 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
 // 0.2, "lower" when it lies below, "inconclusive" when it straddles that,
 // is wider than +-0.3 or rests on fewer than kMinOrderPoints points.
 std::string order_verdict(const OrderFit& fit, int declared);
+
+// Why a verdict is inconclusive: "too few points" (below kMinOrderPoints in
+// the window, or no fit), "floor" (as few, but only because points reached
+// the reference's floor: a finer ladder at large h would give them),
+// "wide interval" (half-width above 0.3) or "straddles" (the interval holds
+// declared - 0.2); empty for a verdict.
+std::string inconclusive_reason(const OrderFit& fit, int declared);
 
 }  // namespace rb

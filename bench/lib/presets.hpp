@@ -17,10 +17,13 @@ struct StabilitySpec {
   // largest stable step: h = h_min, 2 h_min, ... up to the first that fails
   // or h_max; stable: the run reaches t_end (finite, model valid) with
   // max |H - H0| <= energy_fraction * (m g0 r + the starting kinetic energy)
+  // and max ||R^T R - I||_F < rotation_defect_bound over the run: the whole
+  // state bounded, not the energy alone
   double search_h_min = 1.0 / 1024.0;
   double search_h_max = 8.0;
   double search_t_end = 10.0;
   double energy_fraction = 0.1;
+  double rotation_defect_bound = 1e-2;
 };
 
 struct SweepSpec {

@@ -93,7 +93,8 @@ json options_of(const SweepSpec& s) {
           {"stability",
            {{"enabled", st.enabled}, {"scenes", st.scenes}, {"integrators", st.integrators}, {"drift_h", st.drift_h},
             {"drift_t_end", st.drift_t_end}, {"search_h_max", st.search_h_max}, {"search_h_min", st.search_h_min},
-            {"search_t_end", st.search_t_end}, {"energy_fraction", st.energy_fraction}}}};
+            {"search_t_end", st.search_t_end}, {"energy_fraction", st.energy_fraction},
+            {"rotation_defect_bound", st.rotation_defect_bound}}}};
 }
 
 }  // namespace
@@ -111,6 +112,7 @@ json run_json(const RunRecord& r, const std::string& reference_kind) {
   return {{"index", r.index}, {"scene", r.scene}, {"integrator", m.name}, {"family", m.family},
           {"declared_order", m.declared_order}, {"declared_rotation_order", m.rotation_order},
           {"adaptive", m.adaptive}, {"needs_jacobian", m.needs_jacobian}, {"controller", r.controller},
+          {"tableau", m.tableau.empty() ? json(nullptr) : json(m.tableau)}, {"on_group", m.on_group},
           {"h", number(r.h)}, {"rtol", number(r.rtol)}, {"atol", number(r.atol)},
           {"status", std::string(status_name(r.status))}, {"message", r.message}, {"stop_time", r.stop_time},
           {"steps", r.cost.steps}, {"rejected", r.cost.rejected}, {"rhs_evals", r.cost.rhs_evals},
@@ -125,6 +127,7 @@ json run_json(const RunRecord& r, const std::string& reference_kind) {
           {"error", errors_json(r.error, reference_kind)},
           {"error_max", errors_json(r.error_max, reference_kind)},
           {"error_max_run", {{"same_steps", r.error_max_source.same_steps}, {"steps", r.error_max_source.steps}}},
+          {"error_grid", r.has_error_grid ? errors_json(r.error_grid, reference_kind) : json(nullptr)},
           {"scd", number(r.error.scd)},
           {"drift", {{"energy", number(r.energy_drift)}, {"rotation_defect", number(r.rotation_drift)}}},
           {"final",
@@ -147,9 +150,10 @@ json timed_call(const SweepSpec& spec) {
            "the finiteness and domain check of each recorded output, and copying the recorded states; not the untimed warm-up call before it, not the error measurement; "
            "for a --stepper plug-in run in its own process, the time the child measured around the integration after an "
            "untimed warm-up run in it (not the fork, the pipe or the warm-up)"},
-          {"error_max", "from an untimed run recording every multiple of error_dt (dt_out when given) up to t_end; "
-                        "error_max_run.same_steps says whether it took the timed run's steps (fixed-step and "
-                        "dense-output methods do; methods that land on each output do not)"}};
+          {"error_max", "the largest error over the timed run's steps: from an untimed run recording every multiple "
+                        "of error_dt (dt_out when given) up to t_end where that run takes the timed run's steps "
+                        "(fixed-step and dense-output methods), else over the timed run's own outputs; then "
+                        "error_max_run.same_steps is false and error_grid holds the grid run's errors"}};
 }
 
 json stability_json(const StabilityResults& s) {
@@ -168,13 +172,23 @@ json stability_json(const StabilityResults& s) {
                        {"stable", t.stable}});
     stable.push_back({{"index", r.index}, {"scene", r.scene}, {"integrator", r.method.name}, {"family", r.method.family},
                       {"h", number(r.h)}, {"at_limit", r.at_limit}, {"rotation_defect", number(r.rotation_defect)},
-                      {"energy_scale", r.energy_scale}, {"thresholds", {{"energy", r.energy_fraction}}},
+                      {"energy_scale", r.energy_scale},
+                      {"thresholds", {{"energy", r.energy_fraction}, {"rotation_defect", r.rotation_defect_bound}}},
                       {"tried", tried}});
   }
   return {{"drift", drift}, {"largest_stable_h", stable}};
 }
 
 double as_number(const json& j) { return j.is_number() ? j.get<double>() : kNaN; }
+
+// The ball's principal moments as the scene gives them; null for the
+// homogeneous ball (I = 2/5 m r^2 about every axis), where R does not enter
+// the dynamics.
+json inertia_json(const SweepScene& s) {
+  if (!s.scene.ball.inertia) return nullptr;
+  const Vec3& I = *s.scene.ball.inertia;
+  return {I.x(), I.y(), I.z()};
+}
 
 using RunKey = std::pair<std::string, std::string>;  // (scene, integrator)
 
@@ -236,15 +250,20 @@ json fit_orders(const json& runs, const json& references) {
   for (const RunKey& key : groups.keys) {
     const std::vector<const json*>& group = groups.members.at(key);
     const json& first = *group.front();
-    json observed, ci95, fits, verdicts;
+    json observed, ci95, fits, verdicts, reasons;
     bool lower = false, all_as_declared = true;
     for (const char* c : components) {
       std::vector<double> h, e;
+      const double floor = floors.count(key.first) ? floors[key.first] : 0.0;
       for (const json* r : group) {
         h.push_back(as_number(r->at("h")));
-        e.push_back(as_number(r->at("error").at(c)));
+        // below the floor: null in the report, the floor here (counted, never fitted)
+        const json& below = r->at("error").at("below_floor");
+        const bool at_floor = std::find(below.begin(), below.end(), c) != below.end();
+        e.push_back(at_floor ? floor : as_number(r->at("error").at(c)));
       }
-      const OrderFit fit = fit_order(h, e, floors.count(key.first) ? floors[key.first] : 0.0);
+      // up to 8 points: on the quarter-step ladder 6 span only 1.5 halvings
+      const OrderFit fit = fit_order(h, e, floor, 0.1, 8);
       const int declared = std::string(c) == "rotation" ? first.at("declared_rotation_order").get<int>()
                                                         : first.at("declared_order").get<int>();
       // a higher order than declared is no failure: for odd-order flat-view
@@ -252,6 +271,8 @@ json fit_orders(const json& runs, const json& references) {
       // after projection converges one order faster
       const std::string verdict = order_verdict(fit, declared);
       verdicts[c] = verdict;
+      const std::string why = inconclusive_reason(fit, declared);
+      reasons[c] = why.empty() ? json(nullptr) : json(why);
       lower = lower || verdict == "lower";
       all_as_declared = all_as_declared && verdict == "as declared";
       if (std::isfinite(fit.slope)) {
@@ -268,6 +289,7 @@ json fit_orders(const json& runs, const json& references) {
     orders.push_back({{"scene", key.first}, {"integrator", key.second}, {"declared", first.at("declared_order")},
                       {"declared_rotation", first.at("declared_rotation_order")}, {"observed", observed},
                       {"ci95", ci95}, {"fit", fits["contact"]}, {"fits", fits}, {"verdict", verdicts},
+                      {"inconclusive_reason", reasons},
                       {"pass", lower ? json(false) : all_as_declared ? json(true) : json(nullptr)}});
   }
   return orders;
@@ -280,7 +302,8 @@ json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes, c
     references.push_back({{"scene", s.scene.name}, {"kind", s.reference.kind}, {"method", s.reference.method},
                           {"cross_check", s.reference.cross_check}, {"error", s.reference.error},
                           {"exact_rotation", s.reference.exact_rotation}, {"t_end", s.scene.t_end},
-                          {"omega_scale", s.omega_scale},
+                          {"omega_scale", s.omega_scale}, {"inertia", inertia_json(s)},
+                          {"r_feeds_back", s.problem.model().anisotropic()},
                           {"message", s.reference.message}});
   std::map<std::string, std::string> kind;
   for (const SweepScene& s : scenes) kind[s.scene.name] = s.reference.kind;

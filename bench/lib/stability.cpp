@@ -73,14 +73,18 @@ StableStepRecord stable_step_search(const SweepScene& s, const Integrator& m, co
   r.method = m.info();
   r.energy_scale = energy_scale_of(s.problem);
   r.energy_fraction = st.energy_fraction;
+  r.rotation_defect_bound = st.rotation_defect_bound;
   const DriftMeter meter(s.problem);
   // upward from the smallest step, so that every h below the answer is tried
   for (double h = st.search_h_min; h <= st.search_h_max * (1 + 1e-12); h *= 2) {
     const RunRecord run = run_task(s, SweepTask{0, 0, m.name(), h, kNaN, {}}, 5'000'000);
-    StableStepTry t{h, run.status, kNaN, run.rotation_drift, false};
-    if (run.status == Status::ok)
-      t.energy_error = std::max(run.energy_drift, meter.at(run.final_state).energy) / r.energy_scale;
-    t.stable = run.status == Status::ok && t.energy_error <= st.energy_fraction;
+    // both over the run: the recorded states (every multiple of h on the
+    // error grid) and the last one
+    const Drift last = meter.at(run.final_state);
+    StableStepTry t{h, run.status, kNaN, std::max(run.rotation_drift, last.rotation_defect), false};
+    if (run.status == Status::ok) t.energy_error = std::max(run.energy_drift, last.energy) / r.energy_scale;
+    t.stable = run.status == Status::ok && t.energy_error <= st.energy_fraction &&
+               t.rotation_defect < st.rotation_defect_bound;
     r.tried.push_back(t);
     if (!t.stable) break;
     r.h = h;

@@ -3,9 +3,9 @@
 // recorded at log-spaced times (bounded, linear, quadratic growth or blow-up
 // can be read off), and for each fixed-step method the largest step below
 // which every step of the study stays finite, valid and with a bounded
-// energy error. Accuracy is not stability: no error threshold decides it, and
-// the rotation defect is recorded beside it, not tested (a Lie-group method
-// keeps it at rounding by construction).
+// energy error and rotation defect. Accuracy is not stability: no error
+// against the reference decides it; the whole state must stay bounded, so an
+// energy within its bound with R far off SO(3) is not stable.
 #include <string>
 #include <vector>
 
@@ -30,8 +30,8 @@ struct StableStepTry {
   double h;
   Status status;
   double energy_error;     // max |H - H0| over the run / the energy scale; NaN when it failed
-  double rotation_defect;  // max ||R^T R - I||_F over the run: reported, not a criterion
-  bool stable;             // ok and energy_error <= energy_fraction
+  double rotation_defect;  // max ||R^T R - I||_F over the run (the recorded states and the last)
+  bool stable;             // ok, energy_error <= energy_fraction and rotation_defect < rotation_defect_bound
 };
 
 // The largest h of the ladder h_min, 2 h_min, ... at which the run and every
@@ -43,6 +43,7 @@ struct StableStepRecord {
   double h = kNaN;  // NaN when even h_min was not stable
   double energy_scale = 0.0;     // m g0 r + the starting kinetic energy
   double energy_fraction = 0.0;  // the bound on energy_error
+  double rotation_defect_bound = 0.0;  // the bound on rotation_defect
   double rotation_defect = kNaN; // at h
   bool at_limit = false;         // h is the ladder's top: the method may be stable beyond
   std::vector<StableStepTry> tried;  // by h ascending, up to the first unstable one

@@ -61,8 +61,13 @@ struct RunRecord {
   std::size_t timed_outputs = 0;     // output times the timed call records
   std::vector<double> wall_samples;  // seconds, one per timed repeat
   RunErrors error;                   // at t_end, of the run that is timed
-  RunErrors error_max;               // the largest over the error grid
+  // the largest over the error grid, from a run taking the timed run's
+  // steps; where the grid run steps differently (a method that lands on each
+  // output), over the timed run's own outputs, and the grid run's in error_grid
+  RunErrors error_max;
   ErrorMaxSource error_max_source;
+  RunErrors error_grid;
+  bool has_error_grid = false;
   double energy_drift = kNaN;     // max |H(t) - H(0)| over the error grid
   double rotation_drift = kNaN;   // max ||R^T R - I||_F over the error grid
   FlatState final_state = FlatState::Zero();
@@ -90,7 +95,13 @@ struct SweepTask {
   std::string controller;  // RunOptions::controller (empty: the method's own)
 };
 
-// The tasks of this shard, in a deterministic order.
+// The step a fixed-step method takes for a ladder value h from 0 to t_end:
+// t_end / ceil(t_end / h), h itself where h divides t_end (the order fit and
+// the report use it, not the ladder's number).
+double step_taken(double h, double t_end);
+
+// The tasks of this shard, in a deterministic order (a fixed-step task's h
+// is the step taken).
 std::vector<SweepTask> sweep_tasks(const SweepSpec& spec, const std::vector<SweepScene>& scenes);
 
 // The options of the timed call of a task: the run to t_end recording the

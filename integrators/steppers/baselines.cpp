@@ -36,7 +36,8 @@ Rk4Projected::Rk4Projected(Projection projection)
                                        "step (polar factor by a 3x3 SVD): 4 rhs and one SVD a step"
                                      : "classical RK4 on the flat view with R projected onto SO(3) after every "
                                        "step (polar factor by a Newton-Schulz step): 4 rhs and two 3x3 products "
-                                       "a step"}),
+                                       "a step",
+                  .tableau = "rk4"}),
       projection_(projection) {}
 
 RunResult Rk4Projected::integrate(const Problem& problem, const RunOptions& options) const {

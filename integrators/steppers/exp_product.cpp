@@ -108,7 +108,8 @@ MethodInfo facts_of(const ExpProductScheme& scheme) {
           .description = std::to_string(scheme.stages.size()) + "-stage " + scheme.kind +
                          " method on the Lie-group view, " + std::to_string(exponentials_per_step_of(scheme, true)) +
                          " exponentials a step (" + std::to_string(exponentials_per_step_of(scheme, false)) +
-                         " for a homogeneous ball): " + scheme.source};
+                         " for a homogeneous ball): " + scheme.source,
+          .on_group = true};
 }
 
 }  // namespace

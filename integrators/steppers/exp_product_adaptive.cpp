@@ -100,7 +100,8 @@ std::unique_ptr<Integrator> exp_product_adaptive(ExpProductScheme scheme) {
                                  std::to_string(plan.stages - 1) + " rhs and " +
                                  std::to_string(stage_exps + update_exps) + " exponentials an attempt (" +
                                  std::to_string(update_exps) +
-                                 " for a homogeneous ball); steps clamped onto the outputs: " + scheme.source};
+                                 " for a homogeneous ball); steps clamped onto the outputs: " + scheme.source,
+                  .on_group = true};
   const int error_order = std::min(scheme.order, scheme.embedded_order) + 1;
   return adaptive_method(std::move(info), [plan, error_order](const Problem& problem, const RunOptions&,
                                                               const Tolerances& tol, auto&& drive) {

@@ -108,7 +108,8 @@ std::unique_ptr<Integrator> rk_adaptive(Tableau tableau, std::string name, const
                   .description = "adaptive explicit RK on the " + t.name() + " pair (order " +
                                  std::to_string(t.order()) + ", " + std::to_string(t.attempt_stages()) + " stages" +
                                  (t.fsal_in_attempt() ? ", FSAL" : "") + ", " + controller_title(controller) +
-                                 " controller by default) on the flat view; steps clamped onto the outputs"};
+                                 " controller by default) on the flat view; steps clamped onto the outputs",
+                  .tableau = t.name()};
   return adaptive_method(std::move(info), [tableau = std::move(tableau)](const Problem& problem, const RunOptions&,
                                                                          const Tolerances& tol, auto&& drive) {
     FlatPairStepper stepper(problem, tableau, tol);

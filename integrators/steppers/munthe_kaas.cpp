@@ -23,7 +23,10 @@ MethodInfo facts_of(const Tableau& tableau, std::string name, DexpinvKind dexpin
           .family = "rkmk",
           .declared_order = tableau.order(),
           .rotation_order = dexpinv == DexpinvKind::seminar ? std::min(3, tableau.order()) : tableau.order(),
-          .description = "Runge-Kutta-Munthe-Kaas (" + tableau.name() + " tableau, " + kind + ") on the Lie-group view"};
+          .description = "Runge-Kutta-Munthe-Kaas (" + tableau.name() + " tableau, " + kind + ") on the Lie-group view",
+          // another dexpinv is a variant, not the Lie-group version of the tableau
+          .tableau = dexpinv == DexpinvKind::exact ? tableau.name() : std::string(),
+          .on_group = true};
 }
 
 }  // namespace

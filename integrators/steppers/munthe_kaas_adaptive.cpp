@@ -268,7 +268,9 @@ std::unique_ptr<Integrator> rkmk_adaptive(Tableau tableau, std::string name, con
                   .declared_order = tableau.order(),
                   .embedded_order = tableau.embedded_order(),
                   .controller = controller,
-                  .description = description_of(tableau, controller, use_dense)};
+                  .description = description_of(tableau, controller, use_dense),
+                  .tableau = tableau.name(),
+                  .on_group = true};
   return adaptive_method(std::move(info), [tableau = std::move(tableau), use_dense](const Problem& problem,
                                                                                       const RunOptions& options,
                                                                                       const Tolerances& tol,

@@ -30,12 +30,16 @@ void store(const OdeintState& x, FlatState& y) { std::copy_n(x.begin(), kFlatSiz
 // `rollbench list`, in the family "odeint".
 class OdeintIntegrator : public Integrator {
  public:
-  OdeintIntegrator(std::string name, int order, std::string description, bool adaptive = false)
+  // tableau: the registry's name of the Butcher tableau the stepper uses,
+  // where a Lie-group method shares it (MethodInfo::tableau)
+  OdeintIntegrator(std::string name, int order, std::string description, bool adaptive = false,
+                   std::string tableau = {})
       : Integrator({.name = std::move(name),
                     .family = "odeint",
                     .declared_order = order,
                     .adaptive = adaptive,
-                    .description = std::move(description)}) {}
+                    .description = std::move(description),
+                    .tableau = std::move(tableau)}) {}
 };
 
 // ---- fixed step ----
@@ -216,8 +220,8 @@ class DenseDopri5 {
 template <class Stepper>
 class OdeintAdaptive final : public OdeintIntegrator {
  public:
-  OdeintAdaptive(std::string name, int order, std::string description)
-      : OdeintIntegrator(std::move(name), order, std::move(description), true) {}
+  OdeintAdaptive(std::string name, int order, std::string description, std::string tableau = {})
+      : OdeintIntegrator(std::move(name), order, std::move(description), true, std::move(tableau)) {}
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
     Stepper stepper(problem, tolerances_of(options));
     return drive_adaptive(problem, options, declared_order(), stepper);
@@ -231,12 +235,12 @@ using Controlled = ControlledStepper<ode::controlled_runge_kutta<Rk>>;
 
 std::unique_ptr<Integrator> odeint_euler() {
   return std::make_unique<OdeintFixed<ode::euler<OdeintState>>>(
-      "odeint-euler", 1, "Boost.Odeint euler (explicit Euler) on the flat view");
+      "odeint-euler", 1, "Boost.Odeint euler (explicit Euler) on the flat view", false, "euler");
 }
 
 std::unique_ptr<Integrator> odeint_rk4() {
   return std::make_unique<OdeintFixed<ode::runge_kutta4<OdeintState>>>(
-      "odeint-rk4", 4, "Boost.Odeint runge_kutta4 (classic RK4, 4 evaluations a step) on the flat view");
+      "odeint-rk4", 4, "Boost.Odeint runge_kutta4 (classic RK4, 4 evaluations a step) on the flat view", false, "rk4");
 }
 
 std::unique_ptr<Integrator> odeint_cash_karp54() {
@@ -246,12 +250,13 @@ std::unique_ptr<Integrator> odeint_cash_karp54() {
 
 std::unique_ptr<Integrator> odeint_dopri5() {
   return std::make_unique<OdeintFixed<ode::runge_kutta_dopri5<OdeintState>>>(
-      "odeint-dopri5", 5, "Boost.Odeint runge_kutta_dopri5 at fixed step (5th order, FSAL)");
+      "odeint-dopri5", 5, "Boost.Odeint runge_kutta_dopri5 at fixed step (5th order, FSAL)", false, "dp54");
 }
 
 std::unique_ptr<Integrator> odeint_fehlberg78() {
   return std::make_unique<OdeintFixed<ode::runge_kutta_fehlberg78<OdeintState>>>(
-      "odeint-fehlberg78", 8, "Boost.Odeint runge_kutta_fehlberg78 at fixed step (8th-order solution)");
+      "odeint-fehlberg78", 8, "Boost.Odeint runge_kutta_fehlberg78 at fixed step (8th-order solution)", false,
+      "f78");
 }
 
 std::unique_ptr<Integrator> odeint_abm4() {
@@ -266,7 +271,7 @@ std::unique_ptr<Integrator> odeint_abm5() {
 
 std::unique_ptr<Integrator> odeint_dopri5_adaptive() {
   return std::make_unique<OdeintAdaptive<DenseDopri5>>(
-      "odeint-dopri5-adaptive", 5, "Boost.Odeint controlled runge_kutta_dopri5 with dense output");
+      "odeint-dopri5-adaptive", 5, "Boost.Odeint controlled runge_kutta_dopri5 with dense output", "dp54");
 }
 
 std::unique_ptr<Integrator> odeint_cash_karp54_adaptive() {
@@ -276,7 +281,7 @@ std::unique_ptr<Integrator> odeint_cash_karp54_adaptive() {
 
 std::unique_ptr<Integrator> odeint_fehlberg78_adaptive() {
   return std::make_unique<OdeintAdaptive<Controlled<ode::runge_kutta_fehlberg78<OdeintState>>>>(
-      "odeint-fehlberg78-adaptive", 8, "Boost.Odeint controlled runge_kutta_fehlberg78");
+      "odeint-fehlberg78-adaptive", 8, "Boost.Odeint controlled runge_kutta_fehlberg78", "f78");
 }
 
 // Extrapolation has no single order; 8 is what it is declared (and guesses

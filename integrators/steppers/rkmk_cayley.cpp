@@ -12,7 +12,8 @@ MuntheKaasCayley::MuntheKaasCayley(Tableau tableau, std::string name)
                   .declared_order = tableau.order(),
                   .description = "Runge-Kutta-Munthe-Kaas (" + tableau.name() +
                                  " tableau) with the Cayley map for coordinates; cayley maps counted as exp, "
-                                 "dcayinv as dexpinv"}),
+                                 "dcayinv as dexpinv",
+                  .on_group = true}),
       tableau_(std::move(tableau)) {}
 
 RunResult MuntheKaasCayley::integrate(const Problem& problem, const RunOptions& options) const {

@@ -3,9 +3,12 @@
 // the exponential (munthe_kaas.cpp) and with the Cayley map
 // (rkmk_cayley.cpp): the coordinate map is a parameter.
 #include <array>
+#include <cmath>
+#include <cstdio>
 
 #include "integrators/cayley.hpp"
 #include "integrators/fixed_step.hpp"
+#include "integrators/run_book.hpp"
 #include "problems/so3.hpp"
 
 namespace rb {
@@ -19,6 +22,21 @@ inline const Mat3 kAnyRotation = Mat3::Identity();
 // its vectors through memory (callgrind: 76 instructions a call).
 struct ExpCoordinates {
   DexpinvKind kind;
+  // Called where a stage's dexpinv is not finite: past the chart's edge
+  // (|u| >= kDexpinvMaxAngle, the closed form's pole) the step cannot be
+  // taken in these coordinates, which is the status chart-limit, not a
+  // divergence of the state.
+  void check_chart(const Vec3& u) const {
+    // a NaN stage (the state itself not finite) is no chart's edge
+    if (kind == DexpinvKind::exact && u.norm() >= kDexpinvMaxAngle) {
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "a stage turns the ball by |u| = %.4g rad, past the exponential chart's edge (%.4g rad, "
+                    "dexpinv's pole at 2 pi): the step is too large for these coordinates",
+                    u.norm(), kDexpinvMaxAngle);
+      throw StepFailure(Status::chart_limit, text);
+    }
+  }
   [[gnu::always_inline]] Mat3 exp(const Vec3& u) const { return so3_exp(u); }
   [[gnu::always_inline]] Vec3 dexpinv(const Vec3& u, const Vec3& w) const { return rb::dexpinv(u, w, kind); }
 };
@@ -27,6 +45,7 @@ struct ExpCoordinates {
 struct CayleyCoordinates {
   [[gnu::always_inline]] Mat3 exp(const Vec3& u) const { return so3_cay(u); }
   [[gnu::always_inline]] Vec3 dexpinv(const Vec3& u, const Vec3& w) const { return dcayinv(u, w); }
+  void check_chart(const Vec3& /*u*/) const {}  // dcayinv has no pole
 };
 
 // One step with S stages (S = 0: any number), so that the stage loop unrolls
@@ -73,6 +92,8 @@ struct MkStep {
       }
       K[i] = map.dexpinv(U, omega);
       ++cost.dexpinv_evals;
+      if (!std::isfinite(K[i].x())) [[unlikely]]
+        map.check_chart(U);
     }
     Vec3 u;
     ZState dz;

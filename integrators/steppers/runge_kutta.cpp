@@ -13,7 +13,8 @@ MethodInfo facts_of(const Tableau& tableau, std::string name) {
           .family = "rk",
           .declared_order = tableau.order(),
           .description = "classical explicit RK (" + tableau.name() + " tableau, " +
-                         std::to_string(tableau.stages()) + " stages) on the flat view"};
+                         std::to_string(tableau.stages()) + " stages) on the flat view",
+          .tableau = tableau.name()};
 }
 
 // One step of an explicit tableau with S stages, S = 0 for any number. With S

@@ -45,6 +45,12 @@ ADAPTIVE = {
 # (flat, Lie) pairs the summary must put side by side
 PAIRS = [("rk4", "rkmk4"), ("odeint-fehlberg78", "rkmk8"),
          ("odeint-fehlberg78-adaptive", "rkmk-f78-adaptive"), ("odeint-dopri5-adaptive", "rkmk-dp54-adaptive")]
+# the methods' MethodInfo tableau (the runner's facts, from which the analysis pairs them); Lie: family rkmk
+TABLEAU = {"rk4": "rk4", "rkmk4": "rk4", "odeint-fehlberg78": "f78", "rkmk8": "f78",
+           "odeint-fehlberg78-adaptive": "f78", "rkmk-f78-adaptive": "f78",
+           "odeint-dopri5-adaptive": "dp54", "rkmk-dp54-adaptive": "dp54"}
+# scenes where R feeds back (an anisotropic ball, with its moments)
+INERTIA = {"valley-sideways": [0.0025, 0.004, 0.0055]}
 # (scene, integrator, h or tol): status, stop time, message
 FAILURES = {
     ("valley-sideways", "euler", HS[0]): ("diverged", 1.3, "non-finite state at t = 1.3"),
@@ -133,6 +139,7 @@ def _run(scene, name, family, order, rotation_order, adaptive, setting, error, r
     failed = status != "ok"
     run = {"scene": scene, "integrator": name, "family": family, "declared_order": order,
            "declared_rotation_order": rotation_order, "adaptive": adaptive,
+           "tableau": TABLEAU.get(name), "on_group": family == "rkmk",
            "h": None if adaptive else setting, "rtol": setting if adaptive else None,
            "atol": setting if adaptive else None, "status": status, "message": message,
            "stop_time": stop, "steps": steps, "rejected": 3 if adaptive else 0, "rhs_evals": rhs,
@@ -240,7 +247,8 @@ def make_report():
         "build": {"compiler": "g++ 12.2", "flags": "-O3", "type": "Release", "libraries": {}},
         "preset": "custom",
         "references": [{"scene": s, "kind": k, "method": "exact" if k == "exact" else "rk8pd h/2 cross-check",
-                        "cross_check": "—" if k == "exact" else "dopri5 tol 1e-14", "error": f}
+                        "cross_check": "—" if k == "exact" else "dopri5 tol 1e-14", "error": f,
+                        "inertia": INERTIA.get(s), "r_feeds_back": s in INERTIA}
                        for s, (k, f) in SCENES.items()],
         "runs": runs,
         "orders": None,

@@ -60,6 +60,26 @@ class CompareReports(unittest.TestCase):
         self.assertEqual(done.stdout.count("×2 slower"), len(self.a["runs"]))
         self.assertNotIn("No change", done.stdout)
 
+    def test_too_few_repeats_cannot_see_a_slowdown_and_say_so(self):
+        def keep(report, n):
+            out = copy.deepcopy(report)
+            for run in out["runs"]:
+                run["wall_s"]["samples"] = run["wall_s"]["samples"][:n]
+            return out
+        a2 = keep(self.a, 2)
+        b2 = keep(syn.slowed(self.a, 2.0), 2)
+        result = compare.compare_reports(a2, b2)
+        self.assertEqual(result["changes"], [])  # 2 against 2: the smallest p is 1/3
+        self.assertAlmostEqual(compare.smallest_p(2, 2), 1.0 / 3.0)
+        self.assertGreater(compare.smallest_p(4, 4), compare.ALPHA)
+        self.assertLess(compare.smallest_p(5, 5), compare.ALPHA)
+        done, _ = run_cli(a2, b2)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertNotIn("No change:", done.stdout)
+        self.assertIn("no timing change can be detected", done.stdout)
+        self.assertIn(f"{len(a2['runs'])} of {len(a2['runs'])} runs have too few timed repeats (as few as 2)",
+                      done.stdout)
+
     def test_a_slowdown_of_one_method_is_found_there_only(self):
         b = syn.slowed(self.a, 2.0, integrator="rkmk4")
         keys = {key for key, kind, _ in compare.compare_reports(self.a, b)["changes"]}

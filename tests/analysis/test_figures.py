@@ -157,8 +157,19 @@ class FiguresOfSyntheticReport(unittest.TestCase):
         pngs = sorted(n for n in os.listdir(self.out) if n.endswith(".png"))
         self.assertEqual(sorted(re.findall(r'<img src="([^"]+)"', page)), pngs)
         # the summary's tables are rendered, the escaped '|' restored inside its cell
-        self.assertIn("<h2>Same tableau, flat vs Lie (worst error)</h2>", page)
+        self.assertIn('<h2 id="same-tableau-flat-vs-lie-worst-error">Same tableau, flat vs Lie (worst error)</h2>',
+                      page)
         self.assertIn("<td>gsl: step size underflow | h &lt; 1e-15</td>", page)
+        # the findings open the page, before any figure; one table of contents; best of family first
+        self.assertLess(page.index('<h2 id="findings">Findings</h2>'), page.index("<img "))
+        self.assertEqual(page.count(">Contents</h2>"), 1)
+        images = re.findall(r'<img src="([^"]+)"', page)
+        last_best = max(i for i, n in enumerate(images) if n.startswith("work-precision-best-"))
+        first_all = min(i for i, n in enumerate(images)
+                        if n.startswith("work-precision-") and not n.startswith("work-precision-best-"))
+        self.assertLess(last_best, first_all)
+        self.assertIn('<a href="#stability">Stability</a>', page)
+        self.assertIn('id="stability"', page)
 
     def test_drift_draws_each_drift_run_and_each_integrator(self):
         fig = self.figures["drift-valley-sideways.png"]

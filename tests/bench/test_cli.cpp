@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench/lib/presets.hpp"
 #include "integrators/registry.hpp"
 #include "tests/cli_run.hpp"
 
@@ -100,6 +101,39 @@ TEST(Cli, ARunThatStopsEarlyExitsWithThreeAndKeepsItsRows) {
   const std::vector<std::string> rows = lines_of(slurp(csv));
   EXPECT_GT(rows.size(), 10u);    // the rows before the stop are kept
   EXPECT_LT(rows.size(), 202u);   // and none after it
+}
+
+TEST(Cli, RunRefusesAMisspeltIntegratorBeforeAnyReference) {
+  // chaplygin-bumpy-long's reference takes seconds: nothing of it is made or said
+  const Outcome o = rollbench("run --scenes chaplygin-bumpy-long --integrators rkmk4,rkmk44 --out " +
+                              temp_file("misspelt.json").string());
+  EXPECT_EQ(o.code, 2);
+  EXPECT_EQ(o.err, "rollbench: 'integrator': unknown integrator 'rkmk44' (`rollbench list` shows them all)\n");
+}
+
+TEST(Cli, RunWithoutAPresetHasNoStabilityStudy) {
+  const fs::path report = temp_file("no-preset.json");
+  const Outcome o = rollbench("run --scenes plane --integrators rk4,rkmk4 --h 0.25,0.125 --repeats 0 --out " +
+                              report.string());
+  ASSERT_EQ(o.code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(slurp(report));
+  EXPECT_EQ(j.at("preset"), "custom");
+  EXPECT_EQ(j.at("options").at("stability").at("enabled"), false);
+  EXPECT_TRUE(j.at("stability").at("largest_stable_h").empty());
+  EXPECT_TRUE(j.at("stability").at("drift").empty());
+  // with the preset named, its study runs (the quick preset has none: checked on default's spec)
+  EXPECT_TRUE(preset("default").stability.enabled);
+}
+
+TEST(Cli, ALieStepPastTheChartsEdgeIsChartLimitNotDiverged) {
+  const fs::path csv = temp_file("chart.csv");
+  const Outcome o = rollbench("trajectory chaplygin-valley --integrator rkmk8 --h 0.5 --out " + csv.string());
+  EXPECT_EQ(o.code, 3);
+  EXPECT_NE(o.err.find("chart-limit: a stage turns the ball by |u| = "), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("past the exponential chart's edge (5.89 rad"), std::string::npos) << o.err;
+  // the same step with the Cayley map has no edge to pass: whatever it meets, not this
+  const Outcome c = rollbench("trajectory chaplygin-valley --integrator rkmk4-cayley --h 0.5 --out " + csv.string());
+  EXPECT_EQ(c.err.find("chart-limit"), std::string::npos) << c.err;
 }
 
 TEST(Cli, RunWritesAReportAndAShortTable) {

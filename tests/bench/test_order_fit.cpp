@@ -116,6 +116,34 @@ TEST(OrderVerdict, NoisyDataGiveAWideIntervalAndNoVerdict) {
   EXPECT_EQ(order_verdict(fit, 4), "inconclusive");
 }
 
+TEST(OrderVerdict, AnInconclusiveVerdictSaysWhy) {
+  // order 8 from h = 2^-2: above 10 x floor (1e-12) at only three steps, the
+  // five others at the floor: "floor"
+  std::vector<double> h = steps(2, 9);
+  std::vector<double> e = errors(h, [](double x) { return std::max(1e-12, std::pow(x, 8)); });
+  OrderFit fit = fit_order(h, e, 1e-12);
+  EXPECT_EQ(fit.points, 3);
+  EXPECT_EQ(fit.at_floor, 5);
+  EXPECT_EQ(inconclusive_reason(fit, 8), "floor");
+  // three points and nothing at the floor: "too few points"
+  h = steps(1, 3);
+  fit = fit_order(h, errors(h, [](double x) { return std::pow(x, 8); }), 1e-12);
+  EXPECT_EQ(inconclusive_reason(fit, 8), "too few points");
+  // scattered: "wide interval"
+  h = steps(2, 9);
+  e = errors(h, [](double x) { return std::pow(x, 4); });
+  for (std::size_t i = 0; i < e.size(); i += 2) e[i] *= 3.0;
+  EXPECT_EQ(inconclusive_reason(fit_order(h, e), 4), "wide interval");
+  // a narrow interval across declared - 0.2: "straddles"; a verdict: no reason
+  OrderFit narrow;
+  narrow.points = 6;
+  narrow.slope = 3.8;
+  narrow.slope_ci95 = 0.1;
+  EXPECT_EQ(inconclusive_reason(narrow, 4), "straddles");
+  narrow.slope = 4.0;
+  EXPECT_EQ(inconclusive_reason(narrow, 4), "");
+}
+
 TEST(LineFit, SlopeInterceptAndResidualOfKnownLines) {
   const LineFit exact = fit_line({-3, -5, -7, -9}, {-2.5, -4.5, -6.5, -8.5});
   EXPECT_NEAR(exact.slope, 1.0, 1e-14);

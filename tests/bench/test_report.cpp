@@ -126,7 +126,7 @@ TEST(Report, ObservedOrdersOfTheQuickPreset) {
 
 TEST(Report, ReferencesAgreeWithTheirCrossCheck) {
   const json& r = quick_report();
-  ASSERT_EQ(r["references"].size(), 2u);
+  ASSERT_EQ(r["references"].size(), 3u);
   for (const json& ref : r["references"]) {
     EXPECT_LT(ref["error"].get<double>(), 1e-10) << ref["scene"];
     if (ref["scene"] == "bowl-planar") {
@@ -215,6 +215,33 @@ TEST(Report, MergedShardsEqualTheUnshardedReport) {
   EXPECT_EQ(without_timings(merge_reports(shards)), without_timings(whole));
   shards[1]["options"]["h"] = {1.0};
   EXPECT_THROW(merge_reports(shards), InputError);
+}
+
+// The default ladder: quarter steps from 1 to 2^-8, then halvings to 2^-10;
+// a fixed-step task takes t_end / ceil(t_end / h), so a step it records is
+// the step it took, and two ladder values with one step are one run.
+TEST(Report, TheDefaultLadderHasQuarterStepsAndTasksRecordTheStepTaken) {
+  const SweepSpec spec = preset("default");
+  ASSERT_EQ(spec.hs.size(), 33u + 2u);
+  EXPECT_DOUBLE_EQ(spec.hs[1], std::exp2(-0.25));
+  EXPECT_DOUBLE_EQ(spec.hs[32], std::ldexp(1.0, -8));
+  EXPECT_DOUBLE_EQ(spec.hs.back(), std::ldexp(1.0, -10));
+  EXPECT_DOUBLE_EQ(step_taken(std::exp2(-0.25), 5.0), 5.0 / 6.0);
+  EXPECT_DOUBLE_EQ(step_taken(0.25, 5.0), 0.25);
+  EXPECT_DOUBLE_EQ(step_taken(-1.0, 5.0), -1.0);  // refused by the method, not here
+  SweepSpec one = spec;
+  one.scenes = {"plane"};
+  one.integrators = {"rk4"};
+  one.t_end = 1.0;
+  const std::vector<SweepScene> scenes = prepare_scenes(one, false);
+  std::vector<double> taken;
+  for (const SweepTask& t : sweep_tasks(one, scenes)) {
+    const double n = 1.0 / t.h;
+    EXPECT_NEAR(n, std::round(n), 1e-9) << t.h;
+    EXPECT_EQ(std::count(taken.begin(), taken.end(), t.h), 0) << t.h;
+    taken.push_back(t.h);
+  }
+  EXPECT_LT(taken.size(), spec.hs.size());  // 2^-0.25 and 1 are both one step of 1 on a 1 s run
 }
 
 TEST(Report, PresetsAndListsRejectBadInput) {

@@ -53,6 +53,15 @@ TEST(TableauCli, RunMeasuresTheDeclaredOrderOfRkAndRkmk) {
     EXPECT_NEAR(o.at("observed").at("contact").get<double>(), 3.0, 0.3);
     EXPECT_EQ(o.at("pass"), true);
   }
+  // the tableau is each run's fact: rk-X on the flat view and rkmk-X on SO(3)
+  // share it, which is what the analysis pairs them by (tests/analysis)
+  for (const auto& run : j.at("runs")) {
+    const std::string name = run.at("integrator").get<std::string>();
+    SCOPED_TRACE(name);
+    const bool lie = name.rfind("rkmk-", 0) == 0;
+    EXPECT_EQ(run.at("on_group").get<bool>(), lie);
+    EXPECT_EQ(run.at("tableau").get<std::string>(), name.find("ral3") != std::string::npos ? "ral3" : "bs-file");
+  }
   // the adaptive variants run to the end and meet a tighter tolerance with a smaller error
   for (const char* name : {"rk-bs-file-adaptive", "rkmk-bs-file-adaptive"}) {
     SCOPED_TRACE(name);

@@ -1,0 +1,184 @@
+"""The findings that open summary.md: first before everything else, the
+scene's kind from the report, the cheapest method and the flat/Lie time
+ratios as the synthetic model says (computed here), pairs from the
+methods' tableau facts (a user's rk-X / rkmk-X too), the spread over
+repeats, the verdict counts, and the best-of-family pick by cost."""
+import copy
+import json
+import math
+import os
+import subprocess
+import tempfile
+import unittest
+
+from analysis import costs, figures_precision, findings, pairs, summary
+from analysis import markdown as md
+from tests.analysis import synthetic as syn
+from tests.analysis.test_summary import REL, model_cost
+
+
+def as_pair(report, name, tableau, on_group, family):
+    """A copy of one method's runs under another name: a user's tableau pair."""
+    out = []
+    for r in report["runs"]:
+        if r["integrator"] == name:
+            x = copy.deepcopy(r)
+            x.update(integrator=f"{'rkmk' if on_group else 'rk'}-{tableau}", tableau=tableau, on_group=on_group,
+                     family=family)
+            out.append(x)
+    return out
+
+
+class Findings(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.report = syn.make_report()
+        cls.markdown = summary.summary_markdown(cls.report)
+
+    def test_findings_come_first(self):
+        lines = self.markdown.splitlines()
+        self.assertEqual(lines[0], "# rollbench summary")
+        self.assertEqual(next(line for line in lines if line.startswith("## ")), findings.HEADING)
+        self.assertEqual(sum(1 for line in lines if line == summary.CONTENTS), 1)
+        self.assertLess(lines.index(findings.HEADING), lines.index(summary.CONTENTS))
+
+    def test_scene_kind_comes_from_the_report(self):
+        rows = {r[0]: r for r in md.parse_table(self.markdown, "### Cheapest method by wall time")}
+        self.assertEqual(rows["plane"][1], "homogeneous")
+        self.assertEqual(rows["valley-sideways"][1], "R feeds back (moments 0.0025, 0.004, 0.0055 kg m²)")
+
+    def test_cheapest_follows_the_model(self):
+        rows = {r[0]: r for r in md.parse_table(self.markdown, "### Cheapest method by wall time")}
+        for scene in syn.SCENES:
+            for cell, target in zip(rows[scene][2:], costs.TARGETS):
+                found = {n: model_cost(scene, n, "time", target) for n in list(syn.FIXED) + list(syn.ADAPTIVE)}
+                (cost, bound), name = min((c, n) for n, c in found.items() if math.isfinite(c[0]))
+                with self.subTest(scene=scene, target=target):
+                    self.assertTrue(cell.startswith(name + " ("), cell)
+                    self.assertTrue(math.isclose(md.as_number(cell.split("(")[1].split(" s)")[0]), cost,
+                                                 rel_tol=REL))
+
+    def test_pairs_come_from_the_tableau_facts(self):
+        runs = syn.make_report()["runs"]
+        self.assertEqual({(f, lie) for f, lie, _ in pairs.tableau_pairs(runs)}, set(syn.PAIRS))
+        # a method without a tableau is in no pair, whatever its name says
+        for r in runs:
+            if r["integrator"] == "rkmk8":
+                r["tableau"] = None
+        self.assertNotIn(("odeint-fehlberg78", "rkmk8"), {(f, lie) for f, lie, _ in pairs.tableau_pairs(runs)})
+
+    def test_a_user_tableau_pair_is_paired(self):
+        report = syn.make_report()
+        report["runs"] += as_pair(report, "rk4", "mine", False, "rk") + as_pair(report, "rkmk4", "mine", True, "rkmk")
+        self.assertIn(("rk-mine", "rkmk-mine", "mine"), pairs.tableau_pairs(report["runs"]))
+        text = summary.summary_markdown(report)
+        rows = [r for r in md.parse_table(text, "### Same tableau: flat / Lie time ratio") if r[2] == "rk-mine / rkmk-mine"]
+        self.assertEqual(len(rows), len(syn.SCENES))
+        self.assertTrue(all(r[3] == "mine" for r in rows))
+
+    def test_ratios_follow_the_model_with_their_spread(self):
+        rows = md.parse_table(self.markdown, "### Same tableau: flat / Lie time ratio")
+        self.assertEqual(len(rows), len(syn.SCENES) * len(syn.PAIRS))
+        for scene, kind, pair, _, *cells in rows:
+            flat, lie = pair.split(" / ")
+            self.assertEqual(kind, "R feeds back" if scene in syn.INERTIA else "homogeneous")
+            for cell, target in zip(cells, costs.TARGETS):
+                a, bound_a = model_cost(scene, flat, "time", target)
+                b, bound_b = model_cost(scene, lie, "time", target)
+                with self.subTest(scene=scene, pair=pair, target=target):
+                    if not (math.isfinite(a) and math.isfinite(b)):
+                        self.assertEqual(cell, "—")
+                        continue
+                    # every sample is the median times the same factor for both: no spread
+                    value = md.as_number(cell.replace("≥", "").replace("~", "").split(" [")[0])
+                    self.assertTrue(math.isclose(value, a / b, rel_tol=REL), f"{cell} != {a / b:.3g}")
+                    low, high = (float(x) for x in cell.split("[")[1].rstrip("]").split("–"))
+                    self.assertTrue(math.isclose(low, high, rel_tol=REL))
+                    self.assertEqual(cell.startswith("≤"), bool(bound_a) and not bound_b)
+
+    def test_spread_is_the_timing_over_repeats(self):
+        report = copy.deepcopy(self.report)
+        for r in report["runs"]:
+            if r["integrator"] == "rkmk4":
+                r["wall_s"]["samples"] = [s * f for s, f in zip(r["wall_s"]["samples"], (1, 2, 1, 1, 1))]
+        runs = [r for r in report["runs"] if r["scene"] == "plane"]
+        median, low, high, repeats, _ = pairs.time_ratio(runs, "rk4", "rkmk4", "worst", 0.0, 1e-6)
+        a, _ = model_cost("plane", "rk4", "time", 1e-6)
+        b, _ = model_cost("plane", "rkmk4", "time", 1e-6)
+        self.assertEqual(repeats, len(syn.SAMPLE_SPREAD))
+        self.assertTrue(math.isclose(high, a / b, rel_tol=REL))
+        # repeat 1: rkmk4 twice as slow, its ratio half
+        self.assertTrue(math.isclose(low, 0.5 * a / b, rel_tol=REL))
+        self.assertTrue(math.isclose(median, a / b, rel_tol=REL))
+
+    def test_answer_lines_count_where_the_lie_method_pays(self):
+        text = "\n".join(findings.findings_section(self.report))
+        self.assertIn("- Keeping R on SO(3) where R feeds back: the Lie method is cheaper in", text)
+        self.assertIn("- Keeping R on SO(3) on homogeneous scenes:", text)
+
+    def test_verdict_counts_and_reasons(self):
+        report = copy.deepcopy(self.report)
+        for o in report["orders"]:
+            if (o["scene"], o["integrator"]) == ("plane", "rkmk8"):
+                o["inconclusive_reason"] = {"contact": "floor", "centre": "floor", "omega": "wide interval",
+                                            "rotation": "too few points"}
+        text = "\n".join(findings.findings_section(report))
+        total = len(syn.SCENES) * len(syn.FIXED) * 4
+        self.assertIn(f"- Orders: {total - 4} of {total} component fits reach a verdict; 4 are inconclusive "
+                      "(2 floor, 1 too few points, 1 wide interval)", text)
+
+    def test_best_of_family_is_the_cheapest_over_the_range(self):
+        # b has the most points on the family's front, a is cheaper over the accuracy range
+        runs = [{"integrator": n, "adaptive": False, "status": "ok", "rhs_evals": c, "error": {"worst": e}}
+                for n, c, e in (("a", 10, 1e-2), ("a", 100, 1e-7), ("b", 11, 5e-3), ("b", 12, 2e-3),
+                                ("b", 13, 1e-3), ("b", 5000, 1e-7))]
+        front = figures_precision.pareto_front([(r["rhs_evals"], r["error"]["worst"]) for r in runs])
+        self.assertGreater(sum(1 for i in front if runs[i]["integrator"] == "b"), 1)
+        pick = figures_precision.best_of_family(runs, ["b", "a"], lambda r: r["rhs_evals"], "worst", 0.0)
+        self.assertEqual(pick, "a")
+
+
+class EitherError(unittest.TestCase):
+    def test_the_tables_can_read_error_max(self):
+        from analysis import report as rp
+        report = syn.make_report()
+        try:
+            rp.use_errors("max")
+            text = summary.summary_markdown(report)
+        finally:
+            rp.use_errors("end")
+        self.assertIn("read from each run's `error_max`", text)
+        # error_max is 1.5 x error in the model: the cost to 1e-6 at 1.5 e-6 of the error
+        rows = {r[0]: r for r in md.parse_table(text, "### Cost to accuracy — plane")}
+        a, _ = model_cost("plane", "rkmk4", "rhs", 1e-6 / 1.5)
+        self.assertTrue(math.isclose(md.as_number(rows["rkmk4"][3]), a, rel_tol=REL))
+
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ROLLBENCH = os.environ.get("RB_ROLLBENCH", os.path.join(ROOT, "build", "release", "rollbench"))
+
+
+@unittest.skipUnless(os.path.exists(ROLLBENCH), "no rollbench binary (RB_ROLLBENCH)")
+class UserTableauEndToEnd(unittest.TestCase):
+    def test_a_tableau_file_gives_a_pair_in_the_findings(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "r.json")
+            done = subprocess.run([ROLLBENCH, "run", "--preset", "quick", "--no-stability", "--scenes",
+                                   "plane,chaplygin-valley", "--tableau",
+                                   os.path.join(ROOT, "examples", "tableaux", "ralston3.json"), "--integrators",
+                                   "rk-ralston3,rkmk-ralston3", "--h", "2^-5..2^-12", "--repeats", "2", "--out", out],
+                                  capture_output=True, text=True)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            with open(out, encoding="utf-8") as f:
+                report = json.load(f)
+        text = summary.summary_markdown(report)
+        rows = {(r[0], r[2]): r for r in md.parse_table(text, "### Same tableau: flat / Lie time ratio")}
+        self.assertEqual(set(rows), {("plane", "rk-ralston3 / rkmk-ralston3"),
+                                     ("chaplygin-valley", "rk-ralston3 / rkmk-ralston3")})
+        self.assertEqual(rows[("chaplygin-valley", "rk-ralston3 / rkmk-ralston3")][1], "R feeds back")
+        self.assertEqual(rows[("plane", "rk-ralston3 / rkmk-ralston3")][1], "homogeneous")
+        self.assertEqual(rows[("plane", "rk-ralston3 / rkmk-ralston3")][3], "ralston3")
+
+
+if __name__ == "__main__":
+    unittest.main()
