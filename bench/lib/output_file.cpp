@@ -23,8 +23,11 @@ std::atomic<unsigned long> temporary_counter{0};
 std::string temporary_name(const std::string& path) {
   const std::filesystem::path p(path);
   const auto nanoseconds = std::chrono::steady_clock::now().time_since_epoch().count();
-  const std::string name = "." + p.filename().string() + ".tmp." + std::to_string(::getpid()) + "." +
-                           std::to_string(temporary_counter++) + "." + std::to_string(nanoseconds % 1000000007);
+  // appended piece by piece: "." + std::string(...) trips GCC 12's false -Wrestrict
+  std::string name = ".";
+  name += p.filename().string();
+  name += ".tmp." + std::to_string(::getpid()) + "." + std::to_string(temporary_counter++) + "." +
+          std::to_string(nanoseconds % 1000000007);
   return (p.parent_path() / name).string();
 }
 
