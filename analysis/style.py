@@ -34,7 +34,7 @@ STATUS_COLOURS = {
     "domain": "#17becf", "step-underflow": "#9467bd", "max-steps": "#8c564b",
     # an isolated plug-in's run that died, was killed at its limit, or left SO(3)
     "crashed": "#7f0000", "timeout": "#525252", "off-group": "#e377c2",
-    "chart-limit": "#bcbd22", "error": "#000000",
+    "chart-limit": "#1f77b4", "error": "#000000",
 }
 
 
