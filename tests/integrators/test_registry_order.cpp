@@ -1,6 +1,6 @@
 // The observed order of every registered fixed-step integrator, measured on
 // the seminar's default landscape with a sideways start and on a scene where
-// R feeds back (tests/data/chaplygin-bowl-order.json): a new integrator is
+// R feeds back (problems/scenes/chaplygin-bowl.json): a new integrator is
 // checked here with no new test.
 #include <gtest/gtest.h>
 
@@ -50,7 +50,7 @@ const FlatState& chaplygin_reference() {
 }
 
 // The registry-wide order test where R feeds back (issue 13), on
-// tests/data/chaplygin-bowl-order.json to t = 1: an anisotropic ball in a
+// problems/scenes/chaplygin-bowl.json to t = 1: an anisotropic ball in a
 // paraboloid bowl (r kappa = 0.4), 2 cm off centre, spinning at 3 rad/s.
 // omega = T(R)^-1 v turns with R, so R's error enters the contact point and
 // omega: after 1 s the contact is 8 mm from the homogeneous ball's on a 2 cm
