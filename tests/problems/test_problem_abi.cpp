@@ -134,7 +134,9 @@ TEST_F(ProblemAbi, RhsJacobianAndCodesAreTheSuitesBitForBit) {
     EXPECT_EQ(lib.jacobian_evals(p), 200);
     lib.reset_counters(p);
     EXPECT_EQ(lib.rhs_evals(p), 0);
-    if (scene == crest) EXPECT_GT(beyond, 10);  // 36 of 200 with this seed
+    if (scene == crest) {
+      EXPECT_GT(beyond, 10);  // 36 of 200 with this seed
+    }
     lib.close(p);
   }
 }
