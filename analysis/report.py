@@ -1,4 +1,4 @@
-"""Reading rollbench reports (FORMATS.md, "Report (JSON)").
+"""Reading rollbench reports (docs/formats.md, "Report (JSON)").
 
 load() checks the schema string and the keys the analysis relies on, and
 says which key is missing where; every other key is optional, and sections

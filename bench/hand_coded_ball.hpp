@@ -1,5 +1,5 @@
 #pragma once
-// Hand-coded peers for bench/perf_speed.cpp: the rolling ball of MODEL.md on
+// Hand-coded peers for bench/perf_speed.cpp: the rolling ball of docs/model.md on
 // one landscape with its derivatives written out and compiled, and RK4 and
 // RKMK4 written as plain step loops, as lean as a careful engineer writes
 // them for one scene: closed-form T^-1 (omega from v and N in a few

@@ -1,4 +1,4 @@
-// The suite's interface overhead on a library stepper (DESIGN.md, "Fair
+// The suite's interface overhead on a library stepper (docs/design.md, "Fair
 // comparisons"): ns per step of GSL's rk4 on valley-sideways's flat_rhs
 //   interface: rb::find_integrator("gsl-rk4").integrate (allocation of the
 //              GSL objects, the rhs callback with its finiteness check and

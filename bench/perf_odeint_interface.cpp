@@ -1,4 +1,4 @@
-// The interface's own cost (DESIGN.md, "Fair comparisons"): ns per step of
+// The interface's own cost (docs/design.md, "Fair comparisons"): ns per step of
 // Boost.Odeint's runge_kutta4 on the same right-hand side (Problem::flat_rhs
 // on valley-sideways),
 //   interface: rb::find_integrator("odeint-rk4").integrate, i.e.

@@ -1,6 +1,6 @@
 #pragma once
 // The Cayley map of so(3) and the inverse of its derivative, in closed form:
-// the coordinate map of rkmk4-cayley (MODEL.md, family 3, with cay in place
+// the coordinate map of rkmk4-cayley (docs/model.md, "The methods compared", with cay in place
 // of exp). cay is rational (no sin, cos or square root) and has no pole on
 // R^3, where exp's dexpinv has one at |u| = 2 pi.
 #include "problems/so3.hpp"

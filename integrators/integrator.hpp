@@ -1,5 +1,5 @@
 #pragma once
-// What every integrator offers (DESIGN.md): its facts (MethodInfo: a name,
+// What every integrator offers (docs/design.md): its facts (MethodInfo: a name,
 // a family, a declared order, whether it adapts its step, ...), given once
 // at construction, and integrate(problem, options) -> run.
 //

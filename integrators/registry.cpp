@@ -38,7 +38,7 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   add(std::make_unique<RungeKutta>(t::kutta3()));
   add(std::make_unique<RungeKutta>(t::rk4()));
   add(std::make_unique<RungeKutta>(t::rk38()));
-  add(std::make_unique<ExplicitMidpoint>());  // the README's worked example
+  add(std::make_unique<ExplicitMidpoint>());  // docs/extending.md's worked example
 
   // Lie-group methods: exp-Euler and Runge-Kutta-Munthe-Kaas
   add(std::make_unique<MuntheKaas>(t::euler(), "exp-euler"));

@@ -1,5 +1,5 @@
 #pragma once
-// A Butcher tableau from a JSON file (FORMATS.md, "Butcher tableau"): name,
+// A Butcher tableau from a JSON file (docs/formats.md, "Butcher tableau"): name,
 // order (optional), c, A, b or the seminar's `butcher` matrix, an optional
 // embedded b_err with err_order, and a source. Everything is checked on
 // loading: the shape (square, explicit), finiteness, rows summing to c, and

@@ -1,5 +1,5 @@
 #pragma once
-// The integrators one tableau file gives (FORMATS.md, "Butcher tableau"):
+// The integrators one tableau file gives (docs/formats.md, "Butcher tableau"):
 // rk-<name> on the flat view and rkmk-<name> on the Lie-group view; with
 // b_err also rk-<name>-adaptive and rkmk-<name>-adaptive on the embedded
 // pair (PI controller, steps clamped onto the outputs).

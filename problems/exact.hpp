@@ -1,5 +1,5 @@
 #pragma once
-// Closed-form solutions of the rolling ball (MODEL.md, "Results with a closed
+// Closed-form solutions of the rolling ball (docs/model.md, "Results with a closed
 // form"), the anchors of the tests and the exact references of the reports.
 // Scenes name them under "exact"; make_exact checks that the scene's
 // landscape and start are the ones the solution assumes.

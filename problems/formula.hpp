@@ -1,5 +1,5 @@
 #pragma once
-// A landscape formula z = f(x, y) (FORMATS.md, "Formula language") compiled
+// A landscape formula z = f(x, y) (docs/formats.md, "Formula language") compiled
 // once to a flat program for a stack machine, then evaluated many times:
 // as a plain double, or as a Jet2 with exact gradient and Hessian.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// The formula language's tokens (FORMATS.md, "Formula language"): numbers,
+// The formula language's tokens (docs/formats.md, "Formula language"): numbers,
 // names, the operators + - * / ^ ** and ( ) ,. Internal to the parser
 // (formula_parser.cpp); errors are InputErrors with the 1-based column.
 #include <array>

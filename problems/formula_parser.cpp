@@ -211,7 +211,7 @@ class Compiler {
     advance();
     const bool call = tok().kind == Tok::lparen;
     if (const NonSmoothInfo* ns = find_non_smooth(name))
-      fail(std::string(name) + " is not smooth: the landscape needs continuous second derivatives (MODEL.md); " +
+      fail(std::string(name) + " is not smooth: the landscape needs continuous second derivatives (docs/model.md); " +
                std::string(ns->hint),
            name_tok);
     if (const FunctionInfo* fn = find_function(name)) {

@@ -1,5 +1,5 @@
 #pragma once
-// The exact Jacobian of the flat view F(y) (MODEL.md, "Integrators
+// The exact Jacobian of the flat view F(y) (docs/model.md, "Integrators
 // compared"), for the implicit integrators: forward-mode automatic
 // differentiation through Problem::flat_rhs, so there is no finite-difference
 // step to choose and the result is exact up to rounding.

@@ -1,6 +1,6 @@
 #pragma once
 // The landscape z = f(x, y) the ball rolls on: f, grad f and Hess f at a
-// contact point (x, y), from a formula (FORMATS.md, "Formula language").
+// contact point (x, y), from a formula (docs/formats.md, "Formula language").
 // Lengths are in the scene's units; x, y and z are world coordinates.
 #include <map>
 #include <string>

@@ -1,7 +1,7 @@
 #pragma once
-// What every problem offers the integrators (DESIGN.md): the flat view F(y),
+// What every problem offers the integrators (docs/design.md): the flat view F(y),
 // the Lie-group view (omega(R, z), G(R, z)), the start, the validity checks of
-// MODEL.md ("Where the model stops holding") and an exact solution if known.
+// docs/model.md ("Where the model stops holding") and an exact solution if known.
 //
 // A Problem is immutable and shared read-only by every run and thread; runs
 // keep their own counters.
@@ -104,7 +104,7 @@ class Problem {
     return m.regular() & (m.normal_force > 0.0) & (m.normal_force + m.det_E + m.fit_xx + m.fit_yy < kHuge);
   }
 
-  // Every check of MODEL.md at one state: check_step, then check_model
+  // Every check of docs/model.md at one state: check_step, then check_model
   // from one evaluation at y (for states no stage evaluates).
   Validity check_full(const FlatState& y) const;
 

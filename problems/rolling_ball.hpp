@@ -1,5 +1,5 @@
 #pragma once
-// The rolling-ball ODE of MODEL.md: a ball of radius r and mass m rolling
+// The rolling-ball ODE of docs/model.md: a ball of radius r and mass m rolling
 // without slipping on z = f(x, y) under gravity (0, 0, -g0). The ball is
 // homogeneous unless its principal moments are given (a Chaplygin ball,
 // "A ball whose orientation matters"): then R enters T(R, alpha).
@@ -25,7 +25,7 @@ struct BallParams {
   std::optional<Vec3> inertia;
 };
 
-// What the validity checks of MODEL.md ("Where the model stops holding")
+// What the validity checks of docs/model.md ("Where the model stops holding")
 // need at one state, taken from an evaluation of the right-hand side: no
 // extra landscape evaluation.
 struct ModelMargins {
@@ -73,7 +73,7 @@ struct Kinematics {
   Jet2<T> f;                      // landscape gradient and Hessian; f.f is NaN (not needed)
 };
 
-// Derived quantities at one flat state (MODEL.md, "Derived quantities").
+// Derived quantities at one flat state (docs/model.md, "Derived quantities").
 struct Derived {
   Vec3 N;                // upward unit normal at the contact
   Vec3 centre;           // c = phi + r N
@@ -162,7 +162,7 @@ class RollingBall {
   // The upward unit normal at the contact point (x, y).
   Vec3 normal_at(double x, double y) const;
 
-  // Every derived quantity of MODEL.md at a flat state.
+  // Every derived quantity of docs/model.md at a flat state.
   Derived derived(const FlatState& y) const;
 
  private:
@@ -214,7 +214,7 @@ class RollingBall {
   // from registers.
   [[gnu::always_inline]] ModelMargins margins_of(const Kinematics<double>& k) const;
 
-  // omega = T^-1 v for the anisotropic ball by Sherman-Morrison (MODEL.md):
+  // omega = T^-1 v for the anisotropic ball by Sherman-Morrison (docs/model.md):
   // in the body frame, with d = 1 / (Theta + m r^2), n = R^T N, b = R^T v,
   // omega = R (d b + m r^2 (d n . b) / (1 - m r^2 n . d n) d n).
   template <class T, class Rot>

@@ -1,5 +1,5 @@
 #pragma once
-// A scene (FORMATS.md, "Scene (JSON)"): one problem instance as a JSON file,
+// A scene (docs/formats.md, "Scene (JSON)"): one problem instance as a JSON file,
 // read with nlohmann-json and checked completely on load. Every problem with
 // the input throws rb::InputError naming the key ("ball.radius",
 // "start.velocity", "landscape" with the formula's column, ...); nothing is

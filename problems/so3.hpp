@@ -1,7 +1,7 @@
 #pragma once
 // The rotation group SO(3) and its Lie algebra so(3) ~ R^3: hat, exp by
 // Rodrigues' formula, log, and the inverse of the exponential's derivative
-// (dexpinv) used by Runge-Kutta-Munthe-Kaas methods (MODEL.md, family 3).
+// (dexpinv) used by Runge-Kutta-Munthe-Kaas methods (docs/model.md, "The methods compared").
 #include <cmath>
 #include <limits>
 

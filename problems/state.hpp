@@ -1,5 +1,5 @@
 #pragma once
-// The state of the rolling ball in its two views (MODEL.md, "Integrators
+// The state of the rolling ball in its two views (docs/model.md, "Integrators
 // compared"), as fixed-size Eigen types: nothing here allocates.
 #include <Eigen/Dense>
 

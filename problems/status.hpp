@@ -1,5 +1,5 @@
 #pragma once
-// How a run ended (FORMATS.md, report "status"). Failures are results.
+// How a run ended (docs/formats.md, report "status"). Failures are results.
 #include <string_view>
 
 namespace rb {

@@ -1,7 +1,7 @@
 #pragma once
 // The drift of a run, measured one way for the report, the stability study
 // and `rollbench trajectory`: the energy error |H(y) - H(y0)| against the
-// problem's start and the rotation defect ||R^T R - I||_F (MODEL.md,
+// problem's start and the rotation defect ||R^T R - I||_F (docs/model.md,
 // invariants).
 #include "integrators/integrator.hpp"
 

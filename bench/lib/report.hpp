@@ -1,5 +1,5 @@
 #pragma once
-// The JSON report of FORMATS.md ("rollbench.report/2"): provenance, the runs,
+// The JSON report of docs/formats.md ("rollbench.report/2"): provenance, the runs,
 // the observed orders, the references and the stability study; and merging
 // the reports of shards back into one.
 #include <nlohmann/json.hpp>
@@ -21,7 +21,7 @@ nlohmann::json make_report(const SweepSpec& spec, const std::vector<SweepScene>&
 // and what lies below it, the points measured, and the reference's kind.
 nlohmann::json errors_json(const RunErrors& errors, const std::string& reference_kind);
 
-// A run's entry of "runs" (FORMATS.md, "A run").
+// A run's entry of "runs" (docs/formats.md, "A run").
 nlohmann::json run_json(const RunRecord& record, const std::string& reference_kind);
 
 // The "orders" entries for the runs of a report: per (scene, integrator) of a

@@ -16,7 +16,7 @@ namespace {
 
 using json = nlohmann::json;
 
-// columns of the trajectory CSV the state is read from (FORMATS.md order)
+// columns of the trajectory CSV the state is read from (docs/formats.md order)
 constexpr std::size_t kColumnT = 0, kColumnX = 1, kColumnWx = 6, kColumnR00 = 9, kStateColumnsEnd = 18;
 
 std::vector<std::string> split_fields(std::string line) {

@@ -1,6 +1,6 @@
 #pragma once
 // rollbench score: the accuracy and drift of a trajectory made by another
-// program (any language), read from a trajectory CSV (FORMATS.md), against
+// program (any language), read from a trajectory CSV (docs/formats.md), against
 // the suite's reference at the suite's output times, in the report's error,
 // error_max and drift fields. The trajectory's timing is the user's.
 #include <istream>
@@ -21,7 +21,7 @@ struct ScoreOptions {
 
 // Scores the trajectory CSV read from csv (named csv_name in messages) on
 // scene (a shipped name or a JSON path). The rows must be the header of
-// FORMATS.md and then one row per output time of the runner's grid for the
+// docs/formats.md and then one row per output time of the runner's grid for the
 // scene (every dt_out, or error_dt, up to t_end), optionally preceded by the
 // start at t = 0; the errors use the state columns (t, x, y, wx, wy, wz,
 // r00 ... r22), from which the suite derives the centre, the momentum and

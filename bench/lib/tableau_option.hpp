@@ -1,7 +1,7 @@
 #pragma once
 // rollbench's --tableau FILE (repeatable): each file's integrators join the
 // registry before the command runs, so that list, run and trajectory see
-// them like any other (FORMATS.md, "Butcher tableau").
+// them like any other (docs/formats.md, "Butcher tableau").
 #include <string>
 #include <vector>
 

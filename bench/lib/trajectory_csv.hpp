@@ -1,5 +1,5 @@
 #pragma once
-// The trajectory CSV of FORMATS.md: one header row, then one row per output
+// The trajectory CSV of docs/formats.md: one header row, then one row per output
 // time with the state and its derived quantities, 17 significant digits.
 #include <ostream>
 

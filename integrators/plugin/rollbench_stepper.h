@@ -26,7 +26,7 @@
  *       message_size bytes, NUL included) into message; the run then ends
  *       with status "error" and that reason, at the last state before it.
  *
- * The state (the problem's flat view, MODEL.md), 14 doubles:
+ * The state (the problem's flat view, docs/model.md), 14 doubles:
  *   y[0..8]   R, the orientation (body to world), row by row;
  *   y[9..11]  v = T omega, the angular momentum about the contact point;
  *   y[12..13] alpha = (x, y), the contact point.

@@ -1,5 +1,5 @@
 #pragma once
-// Lie-group methods that need only exponentials (MODEL.md, family 4): the
+// Lie-group methods that need only exponentials (docs/model.md, "The methods compared"): the
 // commutator-free methods and, as their special case with one field per
 // exponential, the Crouch-Grossman methods. Over a step, F_j = (omega_j,
 // G_j) is the vector field at stage j, frozen: it moves R by

@@ -1,5 +1,5 @@
 #pragma once
-// The worked example of README's "Add your own integrator": one file plus one
+// The worked example of docs/extending.md's "Add your own integrator": one file plus one
 // registry line. The explicit midpoint rule on the flat view,
 //   y_{n+1} = y_n + h F(y_n + h/2 F(y_n)),
 // written by hand (not from a tableau) to show the whole interface.
@@ -13,7 +13,7 @@ class ExplicitMidpoint final : public Integrator {
       : Integrator({.name = "midpoint",
                     .family = "rk",
                     .declared_order = 2,
-                    .description = "explicit midpoint rule on the flat view (the README's example)"}) {}
+                    .description = "explicit midpoint rule on the flat view (the worked example of docs/extending.md)"}) {}
 
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
     FlatState k1, k2, mid;  // stage storage lives outside the step: no allocation per step

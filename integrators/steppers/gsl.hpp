@@ -1,5 +1,5 @@
 #pragma once
-// Adapters for the GSL odeiv2 steppers on the flat view (MODEL.md, family 5):
+// Adapters for the GSL odeiv2 steppers on the flat view (docs/model.md, "The methods compared"):
 // explicit rk2, rk4, rkf45, rkck, rk8pd, msadams and implicit rk1imp, rk2imp,
 // rk4imp, bsimp, msbdf, the implicit ones fed the exact Jacobian of F
 // (problems/jacobian.hpp).

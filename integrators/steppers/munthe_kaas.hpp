@@ -1,5 +1,5 @@
 #pragma once
-// Runge-Kutta-Munthe-Kaas on the Lie-group view (MODEL.md, family 3): over a
+// Runge-Kutta-Munthe-Kaas on the Lie-group view (docs/model.md, "The methods compared"): over a
 // step with R_n fixed, integrate u' = dexpinv_u(omega(z)), u(t_n) = 0,
 // together with z' = G(z) by an explicit tableau, then
 // R_{n+1} = exp(hat(u_{n+1})) R_n. R stays in SO(3) to rounding error.

@@ -1,5 +1,5 @@
 #pragma once
-// Adaptive Runge-Kutta-Munthe-Kaas on embedded pairs (MODEL.md, family 3,
+// Adaptive Runge-Kutta-Munthe-Kaas on embedded pairs (docs/model.md, "The methods compared",
 // with a step-size controller). Over a step with R_n fixed, the pair
 // integrates u' = dexpinv_u(omega(z)), u(t_n) = 0, with z' = G(z);
 // R_{n+1} = exp(hat(u_{n+1})) R_n, so R stays in SO(3) to rounding error.

@@ -1,5 +1,5 @@
 #pragma once
-// Boost.Odeint steppers on the flat view (MODEL.md, family 4), registered as
+// Boost.Odeint steppers on the flat view (docs/model.md, "The methods compared"), registered as
 // "odeint-...". Odeint's state is a std::array of the 14 flat numbers, so its
 // default range_algebra runs with no allocation; the system calls
 // Problem::flat_rhs and counts its evaluations in a counter owned by the run.

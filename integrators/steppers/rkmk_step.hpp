@@ -1,5 +1,5 @@
 #pragma once
-// One Runge-Kutta-Munthe-Kaas step (MODEL.md, family 3), shared by RKMK with
+// One Runge-Kutta-Munthe-Kaas step (docs/model.md, "The methods compared"), shared by RKMK with
 // the exponential (munthe_kaas.cpp) and with the Cayley map
 // (rkmk_cayley.cpp): the coordinate map is a parameter.
 #include <array>

@@ -2,7 +2,7 @@
 // An integrator made of parts: its facts (MethodInfo) and a fixed-step
 // stepper, run by the one driver with the constant controller. A new way of
 // stepping is then one file (the stepper and a factory calling
-// stepped_method) and one registry line; see README, "Add your own
+// stepped_method) and one registry line; see docs/extending.md, "Add your own
 // integrator".
 //
 // make(problem) returns the stepper for one run: a functor in any shape

@@ -300,7 +300,7 @@ def perf_json():
 
 
 def trajectory_csv(path):
-    """A trajectory CSV (FORMATS.md column order) that swings across the valley while falling down it."""
+    """A trajectory CSV (docs/formats.md column order) that swings across the valley while falling down it."""
     cols = ["t", "x", "y", "cx", "cy", "cz", "wx", "wy", "wz", "r00", "r01", "r02", "r10", "r11", "r12",
             "r20", "r21", "r22", "energy", "normal_force", "spin", "rotation_defect"]
     t = np.linspace(0.0, T_END, 201)

@@ -1,4 +1,4 @@
-// README's recipe "Add your own integrator" followed to the letter by
+// The recipe "Add your own integrator" of docs/extending.md followed to the letter by
 // integrators/steppers/explicit_midpoint.hpp (one file, one registry line): the
 // registry, the runner and the report pick it up with no other change. The
 // registry-wide tests (order, conformance) check it too.

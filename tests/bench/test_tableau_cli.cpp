@@ -23,7 +23,7 @@ fs::path tableau_file(const std::string& name, const std::string& text) {
   return p;
 }
 
-// Ralston's third-order method as in FORMATS.md, and the Bogacki-Shampine
+// Ralston's third-order method as in docs/formats.md, and the Bogacki-Shampine
 // 3(2) pair in the seminar's layout.
 const char* const kRalston = R"json({"name": "ral3", "order": 3, "c": [0, 0.5, 0.75],
   "A": [[0, 0, 0], [0.5, 0, 0], [0, 0.75, 0]],

@@ -114,7 +114,7 @@ TEST(CfCg, DeclaredOrderInEveryComponentWithAndWithoutFeedback) {
 
 // Composed the other way round, the update's h^3 commutator term has the
 // wrong sign (crouch_grossman.cpp): order 2 in R, and where R feeds back in
-// every component. Printed for the README; the prediction asserted.
+// every component. Printed for docs/integrators.md; the prediction asserted.
 TEST(CfCg, ReversedCompositionLosesOrder) {
   for (const char* name : {"cf4-reversed", "cg3-reversed", "cg4a-reversed"}) {
     const testing::Convergence flat = convergence_of(name, valley());

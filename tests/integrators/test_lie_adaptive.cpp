@@ -275,7 +275,7 @@ TEST(LieAdaptive, ErrorEstimateDoesNotSeeR) {
   }
 }
 
-// The stop reasons of MODEL.md end an adaptive run as they end rkmk4's.
+// The stop reasons of docs/model.md end an adaptive run as they end rkmk4's.
 TEST(LieAdaptive, StopsWithTheModelsStatuses) {
   const std::pair<const char*, Status> cases[] = {{"stop-lift-off.json", Status::lift_off},
                                                   {"stop-curvature.json", Status::curvature},

@@ -80,7 +80,7 @@ TEST(OrderConditions, ClassicalTableauxHaveTheirOrderAndNoMore) {
   EXPECT_EQ(check(plain(methods::kutta3())).satisfied_order, 3);
   EXPECT_EQ(check(plain(methods::rk4())).satisfied_order, 4);
   EXPECT_EQ(check(plain(methods::rk38())).satisfied_order, 4);
-  // FORMATS.md's example file: Ralston's third-order method
+  // docs/formats.md's example file: Ralston's third-order method
   const Plain ralston3{3, {0, 0, 0, 0.5, 0, 0, 0, 0.75, 0}, {2.0 / 9, 1.0 / 3, 4.0 / 9}, {0, 0.5, 0.75}};
   EXPECT_EQ(check(ralston3).satisfied_order, 3);
 }

@@ -49,7 +49,7 @@ const FlatState& chaplygin_reference() {
   return ref;
 }
 
-// The registry-wide order test where R feeds back (issue 13), on
+// The registry-wide order test where R feeds back, on
 // problems/scenes/chaplygin-bowl.json to t = 1: an anisotropic ball in a
 // paraboloid bowl (r kappa = 0.4), 2 cm off centre, spinning at 3 rad/s.
 // omega = T(R)^-1 v turns with R, so R's error enters the contact point and

@@ -1,4 +1,4 @@
-// README's recipe "Add your own integrator", followed by a test: a new way
+// The recipe "Add your own integrator" of docs/extending.md, followed by a test: a new way
 // of stepping is one stepper (here Ralston's second-order method, which no
 // registry entry uses) made into an integrator with stepped_method and one
 // registration line. The registry, the runner and the report then treat it

@@ -1,4 +1,4 @@
-// Tableau files (FORMATS.md, "Butcher tableau"): both layouts, the orders
+// Tableau files (docs/formats.md, "Butcher tableau"): both layouts, the orders
 // found or checked, the integrators a file gives, and the exact error of
 // each kind of bad file.
 #include <gtest/gtest.h>

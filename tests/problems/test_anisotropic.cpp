@@ -1,4 +1,4 @@
-// The anisotropic (Chaplygin) ball of MODEL.md, "A ball whose orientation
+// The anisotropic (Chaplygin) ball of docs/model.md, "A ball whose orientation
 // matters": T(R, alpha) and its Sherman-Morrison inverse, the closed forms on
 // a plane and an incline, equal moments reducing to the homogeneous ball for
 // every integrator, and R feeding back into the contact path.

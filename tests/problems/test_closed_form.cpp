@@ -1,4 +1,4 @@
-// MODEL.md's table "Results with a closed form", row by row, with the suite's
+// docs/model.md's table "Results with a closed form", row by row, with the suite's
 // own integrators, and the closed-form solutions of problems/exact.hpp
 // against fine rkmk4 runs. Tolerances are stated where they are used; rkmk4
 // with h = 1e-3 has a global error far below them (~1e-12 on these scenes),

@@ -1,4 +1,4 @@
-// The curvature limit (MODEL.md: r max(k1, k2) >= 1 stops a run) is tested
+// The curvature limit (docs/model.md: r max(k1, k2) >= 1 stops a run) is tested
 // as "M = I - r II is positive definite" (ModelMargins::ball_fits), with no
 // curvature computed. Checked here against closed-form curvatures, and
 // against the principal curvatures the derived quantities compute another

@@ -206,7 +206,7 @@ struct ErrorCase {
 };
 
 TEST(Formula, ErrorsSayWhatAndWhere) {
-  const std::string smooth = " is not smooth: the landscape needs continuous second derivatives (MODEL.md); ";
+  const std::string smooth = " is not smooth: the landscape needs continuous second derivatives (docs/model.md); ";
   // every reserved name has this sentence (test_formula_vocabulary.cpp has them all)
   const std::string shadows =
       " shadows a name of the formula language (x y pi e sin cos tan asin acos atan sinh cosh tanh exp log sqrt "

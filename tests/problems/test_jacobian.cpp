@@ -89,7 +89,7 @@ INSTANTIATE_TEST_SUITE_P(Jacobian, JacobianOnScene,
                            return name;
                          });
 
-// The structure MODEL.md predicts: R' = hat(omega) R is linear in R with
+// The structure docs/model.md predicts: R' = hat(omega) R is linear in R with
 // d(R'_ij)/d(R_kl) = hat(omega)_ik delta_jl, and R never enters (v, alpha)'.
 TEST(Jacobian, RotationBlockIsHatOmegaAndRNeverEntersZ) {
   const Problem problem = make_problem(load_scene("valley-sideways"));

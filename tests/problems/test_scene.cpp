@@ -1,6 +1,6 @@
-// The scene format (FORMATS.md, "Scene (JSON)"): every shipped scene loads
+// The scene format (docs/formats.md, "Scene (JSON)"): every shipped scene loads
 // and is valid at its start; every kind of bad input is an InputError that
-// names its key (and the formula's column); the start conversion of MODEL.md.
+// names its key (and the formula's column); the start conversion of docs/model.md.
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -1,4 +1,4 @@
-// Where the model stops holding (MODEL.md): scenes in tests/data built to end
+// Where the model stops holding (docs/model.md): scenes in tests/data built to end
 // a run with each stop reason. Each loads (its start is valid), and an rkmk4
 // run stops early with the right status, keeping the rows before the stop.
 #include <gtest/gtest.h>

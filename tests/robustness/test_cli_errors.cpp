@@ -112,7 +112,7 @@ TEST(CliErrors, BadInertiaNamesTheKey) {
 }
 
 // Options out of range must be refused, not replaced by a default
-// (FORMATS.md: bad input exits with status 2 and names the option).
+// (docs/formats.md: bad input exits with status 2 and names the option).
 TEST(CliErrors, NegativeOrNonFiniteOptionsAreRefusedNotDefaulted) {
   const std::vector<CliCase> cases = {
       {"trajectory plane --integrator rk4 --h 0.1 --t-end -5 --out OUT", 2, "'t-end'"},

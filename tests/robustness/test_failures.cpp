@@ -1,4 +1,4 @@
-// Failing methods (issue 7): one method of every family and driver in the
+// Failing methods (docs/bad-input.md): one method of every family and driver in the
 // registry is driven into each failure it can have. Each run must end with
 // the right status and a reason, stop at the time it reached, keep every
 // row before the stop, and a sweep over the failing cases must record every

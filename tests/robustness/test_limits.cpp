@@ -1,4 +1,4 @@
-// Limits that protect the machine (issue 7): input that would exhaust the
+// Limits that protect the machine (docs/bad-input.md): input that would exhaust the
 // stack, memory, disk or time, or that carries NaN or infinity, is refused
 // up front with a message that has the numbers, or ends a run with a status;
 // never a crash, a hang or a silent default. docs/bad-input.md lists these.
