@@ -76,7 +76,7 @@ TEST(PluginCli, RunSweepsTheExampleSteppersAndMeasuresTheirOrders) {
 TEST(PluginCli, ListAndTrajectoryTakeSteppers) {
   const testing::CliOutcome list = run_rollbench("list --stepper " + library("midpoint_stepper"));
   ASSERT_EQ(list.code, 0) << list.err;
-  EXPECT_NE(list.out.find("  midpoint-plugin              plugin    2  fixed    explicit midpoint rule in C"),
+  EXPECT_NE(list.out.find("  midpoint-plugin              plugin           2  fixed    explicit midpoint rule in C"),
             std::string::npos)
       << list.out;
   const std::filesystem::path csv = cli_temp_file("t.csv");
