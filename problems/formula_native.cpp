@@ -105,23 +105,24 @@ std::string compiler_identity(const std::string& compiler) {
   return known[compiler] = identity;
 }
 
-// Compiles source into a fresh object in the folder and seals it as the
+// Compiles source in a fresh private subfolder and seals the object as the
 // entry name; the object, or empty on any failure.
 std::string build_entry(const CacheFolder& folder, const std::string& name, const std::string& source,
                         const std::string& key, const std::string& compiler) {
-  PrivateFile c_file = create_private_file(folder, "build.", ".c");
-  if (!c_file.fd) return {};
-  const std::string so_name = c_file.name.substr(0, c_file.name.size() - 2) + ".so";
-  std::string object, why;
-  if (write_all(c_file.fd.get(), source)) {
+  const std::optional<CacheFolder> work = make_private_subfolder(folder, "build.");
+  if (!work) return {};
+  PrivateFile c_file = create_private_file(*work, "formula.", ".c");
+  std::string object;
+  if (c_file.fd && write_all(c_file.fd.get(), source)) {
     c_file.fd = UniqueFd();
     std::vector<std::string> args = {compiler};
     args.insert(args.end(), kFlags.begin(), kFlags.end());
-    args.insert(args.end(), {"-o", child_path(folder, so_name), child_path(folder, c_file.name), "-lm"});
-    if (run_process(args) != 0 || read_cache_file(folder, so_name, object, why) != EntryRead::ok) object.clear();
+    args.insert(args.end(), {"-o", child_path(*work, "formula.so"), child_path(*work, c_file.name), "-lm"});
+    if (run_process(args) != 0 || !read_own_output(*work, "formula.so", object)) object.clear();
   }
-  ::unlinkat(folder.fd.get(), c_file.name.c_str(), 0);
-  ::unlinkat(folder.fd.get(), so_name.c_str(), 0);
+  if (!c_file.name.empty()) ::unlinkat(work->fd.get(), c_file.name.c_str(), 0);
+  ::unlinkat(work->fd.get(), "formula.so", 0);
+  ::unlinkat(folder.fd.get(), work->path.substr(folder.path.size() + 1).c_str(), AT_REMOVEDIR);
   if (object.empty()) return {};
   PrivateFile entry = create_private_file(folder, name + ".", ".tmp");
   if (!entry.fd) return {};

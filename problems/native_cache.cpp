@@ -57,15 +57,20 @@ std::string octal_mode(mode_t mode) {
   return buf;
 }
 
+// What a file must be: an entry or folder this user's and writable by no one
+// else, a secret also unreadable by others, the compiler's output (in a
+// private 0700 folder, whatever the umask made it) only this user's.
+enum class Trust { shared_read, secret, own_output };
+
 // Why what (a file or folder described for the message) may not be
-// trusted: not this user's, writable by others, or for a secret readable by
-// them; empty when it may.
-std::string distrust(const struct stat& st, const std::string& what, bool secret) {
+// trusted; empty when it may.
+std::string distrust(const struct stat& st, const std::string& what, Trust trust) {
   if (st.st_uid != geteuid())
     return what + " is owned by uid " + std::to_string(st.st_uid) + ", not by this user (uid " +
            std::to_string(geteuid()) + ")";
+  if (trust == Trust::own_output) return {};
   if (st.st_mode & (S_IWGRP | S_IWOTH)) return what + " is writable by group or others (mode " + octal_mode(st.st_mode) + ")";
-  if (secret && (st.st_mode & (S_IRWXG | S_IRWXO)))
+  if (trust == Trust::secret && (st.st_mode & (S_IRWXG | S_IRWXO)))
     return what + " has mode " + octal_mode(st.st_mode) + "; a secret must be 0600";
   return {};
 }
@@ -103,7 +108,7 @@ std::string random_hex(std::size_t bytes) {
 }
 
 EntryRead read_checked(const CacheFolder& folder, const std::string& name, std::string& bytes, std::string& why,
-                       const std::string& what, bool secret) {
+                       const std::string& what, Trust trust) {
   bytes.clear();
   // O_NONBLOCK: a FIFO in its place must not hang the open (fstat refuses it)
   const UniqueFd fd(::openat(folder.fd.get(), name.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK));
@@ -117,7 +122,7 @@ EntryRead read_checked(const CacheFolder& folder, const std::string& name, std::
     why = what + " is not a regular file";
     return EntryRead::refused;
   }
-  if (why = distrust(st, what, secret); !why.empty()) return EntryRead::refused;
+  if (why = distrust(st, what, trust); !why.empty()) return EntryRead::refused;
   if (st.st_size > kMaxFileSize) {
     why = what + " is too large (" + std::to_string(st.st_size) + " bytes)";
     return EntryRead::refused;
@@ -151,7 +156,7 @@ void make_secret(const CacheFolder& folder) {
 bool read_secret(CacheFolder& folder, std::string& why) {
   const std::string what = "the cache secret " + in_quotes(folder.path + "/" + kSecretName);
   for (int attempt = 0; attempt < 2; ++attempt) {
-    switch (read_checked(folder, kSecretName, folder.secret, why, what, true)) {
+    switch (read_checked(folder, kSecretName, folder.secret, why, what, Trust::secret)) {
       case EntryRead::refused: return false;
       case EntryRead::ok:
         if (folder.secret.size() == kSecretSize) return true;
@@ -214,9 +219,31 @@ std::optional<CacheFolder> open_cache_folder(const std::string& path_in, std::st
     why = what + " is not a folder";
     return std::nullopt;
   }
-  if (why = distrust(st, what, false); !why.empty()) return std::nullopt;
+  if (why = distrust(st, what, Trust::shared_read); !why.empty()) return std::nullopt;
   if (!read_secret(folder, why)) return std::nullopt;
   return folder;
+}
+
+std::optional<CacheFolder> make_private_subfolder(const CacheFolder& folder, const std::string& prefix) {
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    const std::string random = random_hex(8);
+    if (random.empty()) break;
+    const std::string name = prefix + random;
+    if (::mkdirat(folder.fd.get(), name.c_str(), 0700) != 0) {
+      if (errno == EEXIST) continue;
+      break;
+    }
+    CacheFolder sub;
+    sub.path = folder.path + "/" + name;
+    sub.fd = UniqueFd(::openat(folder.fd.get(), name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
+    struct stat st {};
+    if (sub.fd && ::fstat(sub.fd.get(), &st) == 0 && S_ISDIR(st.st_mode) && st.st_uid == geteuid() &&
+        (st.st_mode & (S_IRWXG | S_IRWXO)) == 0)
+      return sub;
+    ::unlinkat(folder.fd.get(), name.c_str(), AT_REMOVEDIR);
+    break;
+  }
+  return std::nullopt;
 }
 
 std::string child_path(const CacheFolder& folder, const std::string& name) {
@@ -247,7 +274,13 @@ bool write_all(int fd, std::string_view bytes) {
 }
 
 EntryRead read_cache_file(const CacheFolder& folder, const std::string& name, std::string& bytes, std::string& why) {
-  return read_checked(folder, name, bytes, why, "the cache entry " + in_quotes(folder.path + "/" + name), false);
+  return read_checked(folder, name, bytes, why, "the cache entry " + in_quotes(folder.path + "/" + name),
+                      Trust::shared_read);
+}
+
+bool read_own_output(const CacheFolder& folder, const std::string& name, std::string& bytes) {
+  std::string why;
+  return read_checked(folder, name, bytes, why, name, Trust::own_output) == EntryRead::ok;
 }
 
 std::string seal_entry(std::string_view object, std::string_view key, std::string_view secret) {

@@ -10,7 +10,8 @@
 //   Everything after goes through that descriptor (openat, renameat), and the
 //   compiler is given /proc/<pid>/fd/<n>/<name> paths, so a folder renamed or
 //   replaced after the check is never used.
-// - New files get fresh random names, O_CREAT|O_EXCL|O_NOFOLLOW, mode 0600.
+// - New files get fresh random names, O_CREAT|O_EXCL|O_NOFOLLOW, mode 0600;
+//   the compiler writes into a fresh 0700 subfolder.
 // - The folder holds a 32-byte secret, `hmac-secret`, made once from
 //   getrandom and kept 0600; one with another owner, mode or size is refused.
 // - An entry is the shared object followed by a trailer: the entry key, its
@@ -55,6 +56,11 @@ struct CacheFolder {
 // why (one sentence naming the path) when it is refused or cannot be had.
 std::optional<CacheFolder> open_cache_folder(const std::string& path, std::string& why);
 
+// A new folder inside folder, prefix + random, mode 0700 and checked so
+// (no one else can reach what is made in it, whatever the umask); its path
+// is folder's path / its name, its secret empty.
+std::optional<CacheFolder> make_private_subfolder(const CacheFolder& folder, const std::string& prefix);
+
 // name inside the folder, as a path another process (the compiler) reaches
 // through this process's descriptor, whatever happens to the folder's path.
 std::string child_path(const CacheFolder& folder, const std::string& name);
@@ -74,6 +80,10 @@ bool write_all(int fd, std::string_view bytes);
 // others (refused, why set), or missing.
 enum class EntryRead { ok, missing, refused };
 EntryRead read_cache_file(const CacheFolder& folder, const std::string& name, std::string& bytes, std::string& why);
+
+// Reads a file made in a private subfolder (the compiler's output): this
+// user's, a regular file, not a link; its mode is the umask's.
+bool read_own_output(const CacheFolder& folder, const std::string& name, std::string& bytes);
 
 // The entry for object under key: object + trailer.
 std::string seal_entry(std::string_view object, std::string_view key, std::string_view secret);

@@ -317,6 +317,24 @@ TEST(NativeCache, TheSecretIsMadeOnce0600AndKept) {
   EXPECT_EQ(std::distance(fs::directory_iterator(cache.path()), fs::directory_iterator()), 1) << "no temporary left";
 }
 
+// the compiler's output gets the umask's mode (0775 under umask 002, usual
+// for users with their own group): it is made in a private 0700 subfolder, so
+// it is trusted there, and the entry written from it is 0600
+TEST(NativeCache, BuildsUnderAGroupWritableUmask) {
+  SKIP_IF_SWITCHED_OFF();
+  const Folder cache("umask");
+  const mode_t old_mask = umask(002);
+  Formula f = Formula::parse(kText + " + 0.01*y");
+  const NativeOutcome outcome = f.compile_native(cache.settings());
+  umask(old_mask);
+  EXPECT_EQ(outcome, NativeOutcome::built);
+  struct stat st {};
+  ASSERT_EQ(lstat(entry_in(cache.path()).c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 07777, 0600u);
+  EXPECT_EQ(std::distance(fs::directory_iterator(cache.path()), fs::directory_iterator()), 2)
+      << "the entry and the secret; no build folder left behind";
+}
+
 // where cc is, for a compiler name this process has not run yet
 std::string cc_on_path() {
   std::stringstream path(std::getenv("PATH") ? std::getenv("PATH") : "/usr/bin");
