@@ -198,7 +198,9 @@ const NativeSettings& NativeSettings::from_environment() {
     if (!s.enabled && mode != "off") s.refusal = "RB_NATIVE_FORMULA='" + mode + "' is neither on nor off";
     if (const char* cc = std::getenv("RB_NATIVE_CC"); cc && *cc) s.compiler = cc;
     const char* dir = std::getenv("RB_NATIVE_CACHE");
-    s.cache_dir = dir && *dir ? std::string(dir) : default_cache_folder(std::getenv("XDG_CACHE_HOME"), std::getenv("HOME"));
+    // (switched off, no private folder is made)
+    if (dir && *dir) s.cache_dir = dir;
+    else if (s.enabled) s.cache_dir = default_cache_folder(std::getenv("XDG_CACHE_HOME"), std::getenv("HOME"));
     return s;
   }();
   return settings;
