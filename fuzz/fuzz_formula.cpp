@@ -18,15 +18,14 @@
 #include <cstdlib>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <limits>
 #include <set>
 #include <string>
 
-#include <unistd.h>
 
 #include "problems/formula.hpp"
 #include "problems/formula_codegen.hpp"
+#include "problems/native_cache.hpp"
 
 namespace rb {
 namespace {
@@ -86,18 +85,11 @@ void check_native(const Formula& tape, const Formula& native, double x, double y
       fail("native code differs from the tape", text);
 }
 
-// a fresh cache folder per fuzzer process, so each compiled input is built;
-// removed when the fuzzer exits
-std::string fuzz_cache_dir() {
-  return (std::filesystem::temp_directory_path() / ("rb_fuzz_native_" + std::to_string(getpid()))).string();
-}
+// a fresh cache folder per fuzzer process, so each compiled input is built:
+// the private mkdtemp folder (removed when the fuzzer exits)
 NativeSettings fuzz_native_settings() {
   NativeSettings s;
-  s.cache_dir = fuzz_cache_dir();
-  std::atexit([] {
-    std::error_code ignored;
-    std::filesystem::remove_all(fuzz_cache_dir(), ignored);
-  });
+  s.cache_dir = default_cache_folder(nullptr, nullptr);
   return s;
 }
 

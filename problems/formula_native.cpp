@@ -1,42 +1,42 @@
 // Native landscapes (formula_native.hpp): the tape's C source compiled by the
 // system compiler into a cached shared object, verified, then loaded.
 //
-// A cache entry is one file, <folder>/f<hash of key>.so, the shared object
-// followed by a trailer: the full key, its length, an FNV-1a checksum of all
-// bytes before the checksum, and a magic word. ELF ignores bytes past its
-// sections, so the file loads as it is; before it loads, the trailer must
-// hold this very key and the checksum must match, or the entry is rebuilt.
-// Entries are written under a unique name and renamed into place, so readers
-// never see half a file.
+// A cache entry is one file, <folder>/f<hash of key>.so: the shared object
+// followed by a trailer with the full key and an HMAC under the folder's
+// secret (native_cache.hpp; ELF ignores bytes past its sections). The
+// entry is read from a checked descriptor and verified in memory; only
+// those bytes are loaded, from a sealed memfd, so nothing another user
+// wrote and nothing changed after the check can run. A forged, stale or
+// damaged entry is rebuilt; a folder or entry that is not this user's alone
+// is refused and the tape runs. Entries are written under a fresh name and
+// renamed into place, so readers never see half a file.
 #include "problems/formula_native.hpp"
 
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <map>
 #include <mutex>
-#include <sstream>
 #include <vector>
 
 #include "problems/formula.hpp"
 #include "problems/formula_codegen.hpp"
 #include "problems/formula_tape.hpp"
+#include "problems/native_cache.hpp"
 
 extern char** environ;
 
 namespace rb {
 namespace {
-
-constexpr char kMagic[9] = "RBNATIV1";
 
 #ifndef RB_NATIVE_MARCH
 #define RB_NATIVE_MARCH "-march=x86-64-v2"
@@ -46,6 +46,7 @@ constexpr char kMagic[9] = "RBNATIV1";
 const std::vector<std::string> kFlags = {"-O2", "-fPIC", "-shared", "-ffp-contract=off", "-fno-math-errno",
                                          RB_NATIVE_MARCH};
 
+// names the entry's file only: the HMAC, not this hash, authenticates it
 std::uint64_t fnv1a(std::string_view bytes, std::uint64_t h = 1469598103934665603ull) {
   for (const char c : bytes) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
   return h;
@@ -57,121 +58,113 @@ std::string hex(std::uint64_t v) {
   return buf;
 }
 
-// Runs argv (no shell) with stdout into out_fd (or /dev/null) and stderr into
-// /dev/null; the exit status, or -1 if it could not start.
-int run_process(const std::vector<std::string>& args, int out_fd = -1) {
+// Runs argv (no shell) with stdin and stderr on /dev/null and stdout into
+// *out through a pipe (or /dev/null); the exit status, or -1 if it could not
+// start.
+int run_process(const std::vector<std::string>& args, std::string* out = nullptr) {
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
+  int ends[2] = {-1, -1};
+  if (out && pipe2(ends, O_CLOEXEC) != 0) return -1;
+  const UniqueFd read_end(ends[0]);
+  UniqueFd write_end(ends[1]);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  if (out_fd >= 0) posix_spawn_file_actions_adddup2(&actions, out_fd, 1);
+  if (out) posix_spawn_file_actions_adddup2(&actions, write_end.get(), 1);
   else posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
   pid_t pid = 0;
   const int started = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
+  write_end = UniqueFd();  // the child holds its copy: EOF when it exits
   if (started != 0) return -1;
+  char buf[4096];
+  while (out) {
+    const ssize_t got = ::read(read_end.get(), buf, sizeof buf);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) break;
+    out->append(buf, static_cast<std::size_t>(got));
+  }
   int status = 0;
   while (waitpid(pid, &status, 0) < 0)
     if (errno != EINTR) return -1;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-std::string read_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return in ? s.str() : std::string();
-}
-
-// `compiler --version`, the compiler's identity in the key; empty if it
-// does not run. Once per compiler and process.
-std::string compiler_identity(const std::string& compiler, const std::filesystem::path& folder) {
+// `compiler --version` through a pipe (no file), the compiler's identity in
+// the key; empty if it does not run. Once per compiler and process.
+std::string compiler_identity(const std::string& compiler) {
   static std::mutex mutex;
   static std::map<std::string, std::string> known;
   const std::lock_guard lock(mutex);
   if (const auto found = known.find(compiler); found != known.end()) return found->second;
   std::string identity;
-  const std::filesystem::path out = folder / ("version." + std::to_string(getpid()) + ".txt");
-  const int fd = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  if (fd >= 0) {
-    if (run_process({compiler, "--version"}, fd) == 0) identity = read_file(out);
-    close(fd);
-    std::error_code ignored;
-    std::filesystem::remove(out, ignored);
-  }
+  if (run_process({compiler, "--version"}, &identity) != 0) identity.clear();
   return known[compiler] = identity;
 }
 
-void put_u64(std::string& s, std::uint64_t v) { s.append(reinterpret_cast<const char*>(&v), sizeof v); }
-std::uint64_t get_u64(const std::string& s, std::size_t at) {
-  std::uint64_t v;
-  std::memcpy(&v, s.data() + at, sizeof v);
-  return v;
-}
-
-std::string trailer(const std::string& object, const std::string& key) {
-  std::string t = key;
-  put_u64(t, key.size());
-  put_u64(t, fnv1a(t, fnv1a(object)));
-  return t.append(kMagic, 8);
-}
-
-// The entry at path holds this key and is intact.
-bool entry_valid(const std::filesystem::path& path, const std::string& key) {
-  const std::string bytes = read_file(path);
-  const std::size_t fixed = 24;
-  if (bytes.size() < fixed + key.size() || bytes.compare(bytes.size() - 8, 8, kMagic, 8) != 0) return false;
-  if (get_u64(bytes, bytes.size() - 24) != key.size()) return false;
-  const std::size_t key_at = bytes.size() - fixed - key.size();
-  if (bytes.compare(key_at, key.size(), key) != 0) return false;
-  const std::string_view before_sum(bytes.data(), bytes.size() - 16);
-  return get_u64(bytes, bytes.size() - 16) == fnv1a(before_sum);
-}
-
-std::atomic<unsigned> unique_counter{0};
-
-// Compiles source into the entry at path; false on any failure.
-bool build_entry(const std::filesystem::path& path, const std::string& source, const std::string& key,
-                 const std::string& compiler) {
-  const std::string stem = path.string() + ".tmp." + std::to_string(getpid()) + "." +
-                           std::to_string(unique_counter.fetch_add(1));
-  const std::string c_file = stem + ".c", so_file = stem + ".so";
-  bool ok = false;
-  {
-    std::ofstream out(c_file, std::ios::binary);
-    out << source;
-    ok = static_cast<bool>(out.flush());
-  }
-  if (ok) {
+// Compiles source in a fresh private subfolder and seals the object as the
+// entry name; the object, or empty on any failure.
+std::string build_entry(const CacheFolder& folder, const std::string& name, const std::string& source,
+                        const std::string& key, const std::string& compiler) {
+  const std::optional<CacheFolder> work = make_private_subfolder(folder, "build.");
+  if (!work) return {};
+  PrivateFile c_file = create_private_file(*work, "formula.", ".c");
+  std::string object;
+  if (c_file.fd && write_all(c_file.fd.get(), source)) {
+    c_file.fd = UniqueFd();
     std::vector<std::string> args = {compiler};
     args.insert(args.end(), kFlags.begin(), kFlags.end());
-    args.insert(args.end(), {"-o", so_file, c_file, "-lm"});
-    ok = run_process(args) == 0;
+    args.insert(args.end(), {"-o", child_path(*work, "formula.so"), child_path(*work, c_file.name), "-lm"});
+    if (run_process(args) != 0 || !read_own_output(*work, "formula.so", object)) object.clear();
   }
-  if (ok) {
-    const std::string object = read_file(so_file);
-    std::ofstream out(so_file, std::ios::binary | std::ios::app);
-    ok = !object.empty() && static_cast<bool>(out << trailer(object, key)) && static_cast<bool>(out.flush());
+  if (!c_file.name.empty()) ::unlinkat(work->fd.get(), c_file.name.c_str(), 0);
+  ::unlinkat(work->fd.get(), "formula.so", 0);
+  ::unlinkat(folder.fd.get(), work->path.substr(folder.path.size() + 1).c_str(), AT_REMOVEDIR);
+  if (object.empty()) return {};
+  PrivateFile entry = create_private_file(folder, name + ".", ".tmp");
+  if (!entry.fd) return {};
+  const bool written = write_all(entry.fd.get(), seal_entry(object, key, folder.secret));
+  entry.fd = UniqueFd();
+  // atomic: readers see the old entry or the new
+  if (!written || ::renameat(folder.fd.get(), entry.name.c_str(), folder.fd.get(), name.c_str()) != 0) {
+    ::unlinkat(folder.fd.get(), entry.name.c_str(), 0);
+    return {};
   }
-  std::error_code error;
-  std::filesystem::remove(c_file, error);
-  if (ok) std::filesystem::rename(so_file, path, error);  // atomic: readers see the old entry or the new
-  ok = ok && !error;
-  if (!ok) std::filesystem::remove(so_file, error);
-  return ok && entry_valid(path, key);
+  return object;
 }
 
-NativeFormula load_entry(const std::filesystem::path& path) {
+// Loads exactly these (verified) bytes: copied into a memfd sealed against
+// any change, then opened through /proc/self/fd. The memfd stays open while
+// the library is loaded, so no two loaded libraries share that name (dlopen
+// would hand back the first for the second).
+NativeFormula load_object(std::string_view object, std::string& why) {
+  UniqueFd fd(memfd_create("rollbench-native-formula", MFD_CLOEXEC | MFD_ALLOW_SEALING));
+  constexpr int kSeals = F_SEAL_SHRINK | F_SEAL_GROW | F_SEAL_WRITE | F_SEAL_SEAL;
+  if (!fd || !write_all(fd.get(), object) || fcntl(fd.get(), F_ADD_SEALS, kSeals) != 0) {
+    why = std::string("cannot copy the native code into a sealed memfd (") + std::strerror(errno) + ")";
+    return {};
+  }
+  const std::string path = "/proc/self/fd/" + std::to_string(fd.get());
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle) return {};
+  if (!handle) {
+    const char* error = dlerror();
+    why = std::string("cannot load the native code (") + (error ? error : "dlopen failed") + ")";
+    return {};
+  }
   NativeFormula code;
-  code.library = std::shared_ptr<void>(handle, [](void* h) { dlclose(h); });
+  code.library = std::shared_ptr<void>(handle, [kept = fd.release()](void* h) {
+    dlclose(h);
+    ::close(kept);
+  });
   code.full = reinterpret_cast<NativeFormula::Function>(dlsym(handle, "rb_formula_full"));
   code.slopes = reinterpret_cast<NativeFormula::Function>(dlsym(handle, "rb_formula_slopes"));
-  if (!code.full || !code.slopes) return {};
+  if (!code.full || !code.slopes) {
+    why = "the native code lacks its functions";
+    return {};
+  }
   return code;
 }
 
@@ -194,12 +187,6 @@ bool agrees_with_tape(const NativeFormula& code, const FormulaTape& tape) {
   return true;
 }
 
-std::filesystem::path default_cache_dir() {
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::filesystem::path(xdg) / "rollbench";
-  if (const char* home = std::getenv("HOME"); home && *home) return std::filesystem::path(home) / ".cache/rollbench";
-  return std::filesystem::temp_directory_path() / ("rollbench-cache-" + std::to_string(getuid()));
-}
-
 }  // namespace
 
 const NativeSettings& NativeSettings::from_environment() {
@@ -211,7 +198,9 @@ const NativeSettings& NativeSettings::from_environment() {
     if (!s.enabled && mode != "off") s.refusal = "RB_NATIVE_FORMULA='" + mode + "' is neither on nor off";
     if (const char* cc = std::getenv("RB_NATIVE_CC"); cc && *cc) s.compiler = cc;
     const char* dir = std::getenv("RB_NATIVE_CACHE");
-    s.cache_dir = dir && *dir ? std::string(dir) : default_cache_dir().string();
+    // (switched off, no private folder is made)
+    if (dir && *dir) s.cache_dir = dir;
+    else if (s.enabled) s.cache_dir = default_cache_folder(std::getenv("XDG_CACHE_HOME"), std::getenv("HOME"));
     return s;
   }();
   return settings;
@@ -220,12 +209,8 @@ const NativeSettings& NativeSettings::from_environment() {
 NativeResult compile_native(const FormulaTape& tape, const NativeSettings& settings) {
   if (!settings.enabled)
     return {{}, NativeOutcome::disabled, settings.refusal.empty() ? "RB_NATIVE_FORMULA=off" : settings.refusal};
-  if (!tape.usable()) return {{}, NativeOutcome::unavailable, "the formula is too long to lower"};
-  const std::filesystem::path folder = settings.cache_dir;
-  std::error_code error;
-  std::filesystem::create_directories(folder, error);
-  if (error) return {{}, NativeOutcome::unavailable, "cannot create the cache folder " + folder.string()};
-  const std::string identity = compiler_identity(settings.compiler, folder);
+  if (!tape.usable()) return {{}, NativeOutcome::unavailable, "the formula is too long or too deep for the tape"};
+  const std::string identity = compiler_identity(settings.compiler);
   if (identity.empty()) return {{}, NativeOutcome::unavailable, "no C compiler '" + settings.compiler + "'"};
 
   const std::string source = formula_c_source(tape);
@@ -235,23 +220,32 @@ NativeResult compile_native(const FormulaTape& tape, const NativeSettings& setti
   key += "\n" + source;
 
   // one load per cache entry and process
-  const std::filesystem::path path = folder / ("f" + hex(fnv1a(key)) + ".so");
+  const std::string name = "f" + hex(fnv1a(key)) + ".so";
+  const std::string where = settings.cache_dir + "/" + name;
   static std::mutex mutex;
-  static std::map<std::string, std::pair<std::string, NativeFormula>> loaded;  // path -> key, code
+  static std::map<std::string, std::pair<std::string, NativeFormula>> loaded;  // where -> key, code
   const std::lock_guard lock(mutex);
-  if (const auto found = loaded.find(path.string()); found != loaded.end() && found->second.first == key)
+  if (const auto found = loaded.find(where); found != loaded.end() && found->second.first == key)
     return {found->second.second, NativeOutcome::cached, ""};
 
+  std::string why;
+  const std::optional<CacheFolder> folder = open_cache_folder(settings.cache_dir, why);
+  if (!folder) return {{}, NativeOutcome::unavailable, why};
+  std::string entry, object;
+  const EntryRead read = read_cache_file(*folder, name, entry, why);
+  if (read == EntryRead::refused) return {{}, NativeOutcome::unavailable, why};
   NativeOutcome outcome = NativeOutcome::cached;
-  if (!entry_valid(path, key)) {
-    if (!build_entry(path, source, key, settings.compiler))
-      return {{}, NativeOutcome::unavailable, "the C compiler '" + settings.compiler + "' failed"};
+  if (const auto verified = open_sealed_entry(entry, key, folder->secret)) {
+    object = *verified;
+  } else {  // missing, or forged, stale or damaged: never loaded
+    object = build_entry(*folder, name, source, key, settings.compiler);
+    if (object.empty()) return {{}, NativeOutcome::unavailable, "the C compiler '" + settings.compiler + "' failed"};
     outcome = NativeOutcome::built;
   }
-  NativeFormula code = load_entry(path);
-  if (!code) return {{}, NativeOutcome::unavailable, "cannot load " + path.string()};
+  NativeFormula code = load_object(object, why);
+  if (!code) return {{}, NativeOutcome::unavailable, why};
   if (!agrees_with_tape(code, tape)) return {{}, NativeOutcome::unavailable, "the native code disagrees with the tape"};
-  loaded[path.string()] = {key, code};
+  loaded[where] = {key, code};
   return {code, outcome, ""};
 }
 
@@ -264,13 +258,21 @@ NativeOutcome Formula::compile_native(const NativeSettings& settings) {
 bool Formula::compile_native() {
   const NativeResult result = rb::compile_native(tape_, NativeSettings::from_environment());
   native_ = result.code;
-  if (!native_) {
-    static std::atomic<bool> said{false};
-    if (!said.exchange(true))
+  if (native_) return true;
+  // the line names the evaluator that runs instead, once per process each:
+  // the tape, or for a formula too long or deep for it the stack interpreter
+  static std::atomic<bool> said_tape{false}, said_stack{false};
+  if (tape_.usable()) {
+    if (!said_tape.exchange(true))
       std::fprintf(stderr, "rollbench: landscape formulas run on the tape, not as native code (%s)\n",
                    result.why.c_str());
+  } else if (!said_stack.exchange(true)) {
+    std::fprintf(stderr,
+                 "rollbench: a landscape formula runs on the stack interpreter, neither on the tape nor as native "
+                 "code (it is too long or too deep for the tape: %zu instructions, stack depth %zu)\n",
+                 program_.size(), max_stack_);
   }
-  return is_native();
+  return false;
 }
 
 }  // namespace rb

@@ -9,12 +9,16 @@
 //                           and the one line names the mistake
 //   RB_NATIVE_CC            the C compiler (default: cc on the PATH)
 //   RB_NATIVE_CACHE         the cache folder (default:
-//                           $XDG_CACHE_HOME/rollbench, else ~/.cache/rollbench)
+//                           $XDG_CACHE_HOME/rollbench, else ~/.cache/rollbench,
+//                           else a private mkdtemp folder for the process)
 // A cache entry is keyed by the generated source, the compiler's identity and
-// version, the flags and the code generator's version; it is verified before
-// it is loaded (a corrupted or stale one is rebuilt) and checked against the
-// tape at a few points after. When no native code can be had, the tape runs
-// and one line on stderr says why, once per process.
+// version, the flags and the code generator's version. The folder must be this
+// user's alone, and an entry is authenticated with the folder's secret before
+// it is loaded (native_cache.hpp; a forged, corrupted or stale one is rebuilt,
+// never loaded), then checked against the tape at a few points. When no
+// native code can be had, the tape (or, for a formula too big for the tape,
+// the stack interpreter) runs and one line on stderr says which and why, once
+// per process.
 #include <memory>
 #include <string>
 

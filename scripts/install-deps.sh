@@ -9,6 +9,8 @@ packages=(
   g++ cmake ninja-build make
   libeigen3-dev nlohmann-json3-dev libboost-dev libgsl-dev libcli11-dev
   libgtest-dev libbenchmark-dev
+  # HMAC-SHA256 for the native-formula cache (problems/native_cache.cpp)
+  libssl-dev
   python3 python3-matplotlib python3-numpy python3-scipy libbenchmark-tools
   # scripts/robustness.sh: libFuzzer and the sanitizer runtimes, llvm-symbolizer for stacks
   clang-14 libclang-rt-14-dev llvm-14

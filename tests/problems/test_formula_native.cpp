@@ -14,10 +14,12 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "problems/formula.hpp"
 #include "problems/formula_codegen.hpp"
+#include "tests/cli_run.hpp"
 
 namespace rb {
 namespace {
@@ -51,6 +53,12 @@ class TempCache {
     return out;
   }
   const fs::path& dir() const { return dir_; }
+  // the one cache entry, f<hash>.so
+  fs::path entry() const {
+    for (const fs::path& p : entries())
+      if (p.extension() == ".so") return p;
+    return {};
+  }
 
  private:
   fs::path dir_;
@@ -71,20 +79,27 @@ void expect_same_jets(const Jet2<double>& a, const Jet2<double>& b, const std::s
 }
 
 // native against tape, eval and slopes, at points inside and far outside
-// the landscapes' range
-void expect_native_equals_tape(const std::string& text, const std::map<std::string, double>& params) {
+// the landscapes' range; the number of jets compared (0 for a formula the
+// tape cannot hold: the stack machine's formulas have no native path)
+int expect_native_equals_tape(const std::string& text, const std::map<std::string, double>& params) {
   Formula tape = Formula::parse(text, params);
-  if (!tape.tape().usable()) return;  // the stack machine's formulas have no native path
+  if (!tape.tape().usable()) return 0;
   Formula native = tape;
-  ASSERT_EQ(native.compile_native(shared_cache()) == NativeOutcome::unavailable, false) << text;
-  ASSERT_TRUE(native.is_native()) << text;
+  EXPECT_NE(native.compile_native(shared_cache()), NativeOutcome::unavailable) << text;
+  if (!native.is_native()) {
+    ADD_FAILURE() << "no native code for " << text;
+    return 0;
+  }
   constexpr double inf = std::numeric_limits<double>::infinity();
   const double points[][2] = {{0.0, 0.0}, {0.3, -0.7}, {-3.1, 2.4}, {1e-300, -1e300}, {inf, 0.5}, {-0.25, std::nan("")}};
+  int compared = 0;
   for (const auto& p : points) {
     const std::string where = text + " at (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ")";
     expect_same_jets(native.eval(p[0], p[1]), tape.eval(p[0], p[1]), where + " eval");
     expect_same_jets(native.slopes(p[0], p[1]), tape.slopes(p[0], p[1]), where + " slopes");
+    compared += 2;
   }
+  return compared;
 }
 
 TEST(FormulaNative, AgreesWithTheTapeBitForBitOnTheTestFormulas) {
@@ -95,13 +110,13 @@ TEST(FormulaNative, AgreesWithTheTapeBitForBitOnTheTestFormulas) {
                            "atan2(y, x + 3) + tan(x/4) + asin(y/9) + acos(x/9) + atan(x*y)",
                            "sinh(x/3)*cosh(y/3) + tanh(x - y) + x^-2 + 2^x + x^1.5 + (x^2+1)^y",
                            "-(x - y)/(1 + x^2) - 2/(3 + y^2)", "cos(x)*sin(x) + sin(y)^2"})
-    expect_native_equals_tape(text, params);
+    EXPECT_EQ(expect_native_equals_tape(text, params), 12) << text;
 }
 
 TEST(FormulaNative, AgreesWithTheTapeBitForBitOnTheFuzzCorpus) {
   SKIP_IF_SWITCHED_OFF();
   const std::map<std::string, double> params = {{"a", 0.5}, {"b", -2.0}, {"big", 1e300}};
-  int compiled = 0;
+  int formulas = 0, jets = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(RB_SOURCE_DIR) / "fuzz" / "corpus" / "fuzz_formula")) {
     std::ifstream in(entry.path(), std::ios::binary);
     std::stringstream text;
@@ -111,10 +126,13 @@ TEST(FormulaNative, AgreesWithTheTapeBitForBitOnTheFuzzCorpus) {
     } catch (const InputError&) {
       continue;  // the corpus holds bad formulas too
     }
-    expect_native_equals_tape(text.str(), params);
-    ++compiled;
+    const int compared = expect_native_equals_tape(text.str(), params);
+    jets += compared;
+    formulas += compared > 0;
   }
-  EXPECT_GE(compiled, 10) << "the corpus should hold formulas that parse";
+  // counted where native code was compared with the tape, not where a formula parsed
+  EXPECT_GE(formulas, 10) << "the corpus should hold formulas that run as native code";
+  EXPECT_EQ(jets, 12 * formulas);
 }
 
 TEST(FormulaNative, GeneratedSourceHoldsNoTextOfTheFormula) {
@@ -130,32 +148,42 @@ TEST(FormulaNative, BuildsOnceThenLoadsFromTheCache) {
   const TempCache cache("once");
   Formula f = Formula::parse("0.25*cos(x)*y^2");
   EXPECT_EQ(f.compile_native(cache.settings()), NativeOutcome::built);
-  ASSERT_EQ(cache.entries().size(), 1u);  // no temporary files left behind
+  ASSERT_EQ(cache.entries().size(), 2u);  // the entry and the secret: no temporary files left behind
+  EXPECT_FALSE(cache.entry().empty());
   Formula again = Formula::parse("0.25*cos(x)*y^2");
   EXPECT_EQ(again.compile_native(cache.settings()), NativeOutcome::cached);
   EXPECT_TRUE(again.is_native());
 }
 
-// a broken entry in place of a good one: rebuilt, never loaded
-void expect_rebuilt_after(const std::string& name, const std::function<void(const fs::path&)>& damage) {
+// a broken entry in place of a good one: rebuilt, never loaded (want:
+// built; cached for the control, an undamaged copy)
+void expect_rebuilt_after(const std::string& name, const std::function<void(const fs::path&)>& damage,
+                          NativeOutcome want = NativeOutcome::built) {
   const TempCache cache(name);
   const std::string text = "0.1*sin(x*y) + 0.2*x";
   Formula first = Formula::parse(text);
   ASSERT_EQ(first.compile_native(cache.settings()), NativeOutcome::built);
   first.drop_native();
-  const std::vector<fs::path> entries = cache.entries();
-  ASSERT_EQ(entries.size(), 1u);
-  // the damaged copy goes to a second folder: this process has loaded the first
+  const fs::path entry = cache.entry();
+  ASSERT_FALSE(entry.empty());
+  // the damaged copy goes to a second folder (with the first's secret, so
+  // that an undamaged copy verifies): this process has loaded the first
   const TempCache other(name + "_other");
-  fs::create_directories(other.dir());
-  const fs::path copy = other.dir() / entries[0].filename();
-  fs::copy_file(entries[0], copy);
+  ASSERT_EQ(mkdir(other.dir().c_str(), 0700), 0);
+  fs::copy_file(cache.dir() / "hmac-secret", other.dir() / "hmac-secret");
+  const fs::path copy = other.dir() / entry.filename();
+  fs::copy_file(entry, copy);
   damage(copy);
   Formula f = Formula::parse(text);
-  EXPECT_EQ(f.compile_native(other.settings()), NativeOutcome::built) << name;
+  EXPECT_EQ(f.compile_native(other.settings()), want) << name;
   ASSERT_TRUE(f.is_native());
   const Formula tape = Formula::parse(text);
   expect_same_jets(f.eval(0.4, -1.3), tape.eval(0.4, -1.3), name);
+}
+
+TEST(FormulaNative, LoadsAnUndamagedCopyOfAnEntry) {
+  SKIP_IF_SWITCHED_OFF();
+  expect_rebuilt_after("undamaged", [](const fs::path&) {}, NativeOutcome::cached);
 }
 
 TEST(FormulaNative, RebuildsACorruptedEntry) {
@@ -179,7 +207,7 @@ TEST(FormulaNative, RebuildsAStaleEntryForAnotherFormula) {
     const TempCache third("stale_source");
     Formula other = Formula::parse("x^3 - y");
     ASSERT_EQ(other.compile_native(third.settings()), NativeOutcome::built);
-    fs::copy_file(third.entries().at(0), p, fs::copy_options::overwrite_existing);
+    fs::copy_file(third.entry(), p, fs::copy_options::overwrite_existing);
   });
 }
 
@@ -196,6 +224,30 @@ TEST(FormulaNative, WithoutACompilerTheTapeRuns) {
   s.enabled = false;
   EXPECT_EQ(f.compile_native(s), NativeOutcome::disabled);
   EXPECT_EQ(f.slopes(3.0, 1.0).fx, 6.0);
+}
+
+// the one line names the evaluator that runs: for a formula too deep for the
+// tape that is the stack interpreter (d44d9b5 said "tape")
+TEST(FormulaNative, AFormulaTooBigForTheTapeSaysTheStackInterpreterRuns) {
+  std::string sum = "x";
+  for (int i = 0; i < 20; ++i) sum = (i % 2 ? "x+(" : "y+(") + sum + ")";
+  const std::string text = "0.01*(" + sum + ")";
+  const Formula f = Formula::parse(text);
+  ASSERT_FALSE(f.tape().usable()) << "stack depth " << f.stack_depth();
+  const fs::path scene = testing::cli_temp_file("deep.json"), csv = testing::cli_temp_file("deep.csv");
+  std::ofstream(scene) << R"({"name": "deep", "description": "a plane written too deep for the tape", "landscape": ")"
+                       << text << R"(", "domain": [-1, 1, -1, 1], "ball": {"radius": 0.1, "mass": 1.0},)"
+                       << R"( "start": {"contact": [0, 0], "omega": [0, 0, 0]}, "t_end": 1})";
+  const testing::CliOutcome o = testing::run_rollbench("trajectory " + scene.string() +
+                                                       " --integrator rk4 --h 0.01 --t-end 0.1 --dt-out 0.1 --out " +
+                                                       csv.string());
+  EXPECT_EQ(o.code, 0) << o.err;
+  EXPECT_EQ(o.err, "rollbench: a landscape formula runs on the stack interpreter, neither on the tape nor as native "
+                   "code (it is too long or too deep for the tape: " +
+                       std::to_string(f.size()) + " instructions, stack depth " + std::to_string(f.stack_depth()) +
+                       ")\n");
+  fs::remove(scene);
+  fs::remove(csv);
 }
 
 }  // namespace
