@@ -8,7 +8,6 @@ from analysis import markdown as md
 from analysis import report as rp
 
 
-
 def tableau_pairs(runs):
     """(flat, Lie, tableau) of the methods among the runs that share a Butcher tableau.
 

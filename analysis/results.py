@@ -66,9 +66,9 @@ def readme_block(report, page):
                 pairs.append(line)
     created = report.get("created", "—")
     commit = str(report.get("git", "—"))[:12]
-    return ([README_BEGIN, ""] + lines + ["", "Same tableau where R feeds back, flat / Lie wall time to the same worst error "
-                                          "(median [lowest–highest] over the timed repeats; above 1: the Lie method is "
-                                          "cheaper):", ""]
+    intro = ("Same tableau where R feeds back, flat / Lie wall time to the same worst error (median "
+             "[lowest–highest] over the timed repeats; above 1: the Lie method is cheaper):")
+    return ([README_BEGIN, ""] + lines + ["", intro, ""]
             + pairs + ["", f"Measured {created} at commit {commit}; command, machine and every scene in "
                        f"[{page}]({page}).", "", README_END])
 

@@ -166,8 +166,8 @@ def header_section(report, metric):
              + (f" `{build['flags']}`" if build.get("flags") else ""),
              f"- runs: {len(rp.runs(report))}, scenes: {', '.join(rp.scenes(report)) or '—'}",
              f"- accuracy metric of the cost tables: {metric} ({rp.METRIC_LABELS[metric]}), read from each run's "
-             f"`{rp._error_key}`" + (" (at t_end)" if rp._error_key == "error" else
-                                      " (the largest over the timed run's steps)"), ""]
+             f"`{rp._error_key}`" + (" (at t_end)" if rp._error_key == "error"
+                                     else " (the largest over the timed run's steps)"), ""]
     refs = rp.section_entries(report, "references")
     if refs:
         rows = [[r["scene"], r.get("kind", "—"), r.get("method", "—"), r.get("cross_check", "—"),

@@ -16,8 +16,9 @@ packages=(
   clang-14 libclang-rt-14-dev llvm-14
 )
 # only scripts/test.sh needs these: the SLURM test's single-node cluster and
-# (tests/slurm/test_slurm.sh), chromium for the index.html test; the main job stays lean without them
-test_packages=(slurm-wlm munge chromium)
+# (tests/slurm/test_slurm.sh), chromium for the index.html test, flake8 for
+# the Python lint (lint.python); the main job stays lean without them
+test_packages=(slurm-wlm munge chromium python3-flake8)
 case "${1:-}" in
   "") ;;
   --tests) packages+=("${test_packages[@]}") ;;

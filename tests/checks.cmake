@@ -26,3 +26,9 @@ if(NOT RB_SANITIZE)
   set_tests_properties(analysis.scipy_peer PROPERTIES ENVIRONMENT
     "RB_ROLLBENCH=$<TARGET_FILE:rollbench>;RB_PROBLEM_LIB=$<TARGET_FILE:rollbench_problem>")
 endif()
+
+# the Python of analysis/, tests/ and scripts/ passes flake8 (.flake8 holds
+# the settings; Debian's python3-flake8, installed by install-deps.sh --tests)
+add_test(NAME lint.python
+         COMMAND ${RB_PYTHON3} -m flake8 analysis tests scripts
+         WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})

@@ -14,7 +14,7 @@ CODE_NAMES = {0: "ok", 1: "diverged", 2: "lift-off", 3: "curvature", 4: "domain"
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 DEFAULT_LIBRARY = os.environ.get("RB_PROBLEM_LIB") or os.path.join(ROOT, "build", "release",
-                                                                    "librollbench_problem.so")
+                                                                   "librollbench_problem.so")
 
 
 class ProblemError(Exception):

@@ -223,7 +223,8 @@ def _stability():
             if scene == "valley-sideways" and name == "euler":
                 h = None  # no tested step passes
             stable.append({"scene": scene, "integrator": name, "family": FIXED[name][0], "h": h,
-                           "tried": [{"h": x, "stable": h is not None and x <= h} for x in STABILITY_HS], "rotation_defect": None if h is None else ROTATION_DEFECT[name],
+                           "tried": [{"h": x, "stable": h is not None and x <= h} for x in STABILITY_HS],
+                           "rotation_defect": None if h is None else ROTATION_DEFECT[name],
                            "thresholds": {"energy_fraction": 0.1}})
     return {"drift": drift, "largest_stable_h": stable}
 

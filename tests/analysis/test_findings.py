@@ -72,7 +72,8 @@ class Findings(unittest.TestCase):
         report["runs"] += as_pair(report, "rk4", "mine", False, "rk") + as_pair(report, "rkmk4", "mine", True, "rkmk")
         self.assertIn(("rk-mine", "rkmk-mine", "mine"), pairs.tableau_pairs(report["runs"]))
         text = summary.summary_markdown(report)
-        rows = [r for r in md.parse_table(text, "### Same tableau: flat / Lie time ratio") if r[2] == "rk-mine / rkmk-mine"]
+        table = md.parse_table(text, "### Same tableau: flat / Lie time ratio")
+        rows = [r for r in table if r[2] == "rk-mine / rkmk-mine"]
         self.assertEqual(len(rows), len(syn.SCENES))
         self.assertTrue(all(r[3] == "mine" for r in rows))
 

@@ -35,7 +35,8 @@ class LandscapeGrid(unittest.TestCase):
         x, y, z = landscape.grid("gaussian-hills", 7, 5, (-3, 3, -3, 3), ROLLBENCH)
         q, h, w, d = 0.05, 0.15, 0.4, 0.1
         expected = (q * (x ** 2 + y ** 2) + h * np.exp(-((x - 1) ** 2 + (y - 0.5) ** 2) / w)
-                    + h * np.exp(-((x + 0.8) ** 2 + (y - 1) ** 2) / w) + h * np.exp(-((x - 0.2) ** 2 + (y + 1) ** 2) / w)
+                    + h * np.exp(-((x + 0.8) ** 2 + (y - 1) ** 2) / w)
+                    + h * np.exp(-((x - 0.2) ** 2 + (y + 1) ** 2) / w)
                     - d * np.exp(-(x ** 2 + y ** 2) / (2 * w)))
         np.testing.assert_allclose(z, expected, rtol=1e-13, atol=1e-16)
 
