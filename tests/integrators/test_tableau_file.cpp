@@ -12,6 +12,7 @@
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"
 #include "tests/integrators/fixtures.hpp"
+#include "tests/integrators/tableau_error.hpp"
 #include "tests/robustness/helpers.hpp"
 
 namespace rb {
@@ -41,14 +42,7 @@ std::string with(std::string text, const std::string& from, const std::string& t
   return text.replace(at, from.size(), to);
 }
 
-std::string error_of(const std::string& text) {
-  try {
-    parse_tableau_file(text, "t.json");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string error_of(const std::string& text) { return testing::tableau_error_of(text); }
 
 TEST(TableauFile, ReadsFormatsExampleWithItsOrder) {
   const TableauFile f = parse_tableau_file(kRalston3, "t.json");

@@ -15,6 +15,7 @@
 #include "integrators/tableau_file.hpp"
 #include "problems/input_error.hpp"
 #include "tests/integrators/fixtures.hpp"
+#include "tests/integrators/tableau_error.hpp"
 #include "tests/robustness/helpers.hpp"
 
 namespace rb {
@@ -31,14 +32,7 @@ const std::string kSsp53Body = R"("c": [0.0, 0.3772689153, 0.7545378307, 0.72898
 
 std::string ssp53(const std::string& extra) { return "{\"name\": \"ssp53\", " + extra + kSsp53Body + "}"; }
 
-std::string error_of(const std::string& text) {
-  try {
-    parse_tableau_file(text, "t.json");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+std::string error_of(const std::string& text) { return testing::tableau_error_of(text); }
 
 const std::string f = "tableau file 't.json': ";
 
