@@ -1,9 +1,10 @@
 #pragma once
 // The one driver: every integrator's run goes through it. It owns what a run
 // is made of besides the stepping: the output times and landing on them, the
-// step budget (accepted + rejected steps), the model's validity checks of the
-// start and of every accepted state (Cost::validity_checks = steps + 1), the
-// stop at the last valid state with a status and a reason, and turning a
+// step budget (accepted + rejected steps), the model's validity checks of
+// every evaluation a step makes (the margins each right-hand side computes;
+// Cost::validity_checks counts the evaluations checked), the stop at the
+// last valid state with a status and a reason, and turning a
 // stepper's failure into that status. The stepper only steps; the step size
 // comes from a controller (integrators/controllers/controller.hpp).
 //
