@@ -171,6 +171,12 @@ class Integrator {
   // statuses. Throws InputError for options it cannot take (e.g. h <= 0).
   virtual RunResult integrate(const Problem& problem, const RunOptions& options) const = 0;
 
+  // Whether integrate() forks a child process (an isolated plug-in,
+  // integrators/steppers/isolated_run.hpp). A sweep makes such runs on one
+  // thread with no other thread alive: a child forked from a multithreaded
+  // process may block forever on a lock another thread held at the fork.
+  virtual bool forks() const { return false; }
+
  private:
   MethodInfo info_;
 };

@@ -323,10 +323,17 @@ std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepS
     progress(progress_line(phase, done, total, std::chrono::duration<double>(clock::now() - since).count(), unit));
   };
 
-  // accuracy: parallel; a shared counter hands out tasks
+  // accuracy: parallel; a shared counter hands out tasks. Runs that fork
+  // (isolated plug-ins) wait until the pool has ended and run on this
+  // thread alone: a child forked while another thread holds a lock (the
+  // allocator's, a static's guard) can wait on it forever
+  std::vector<std::size_t> in_pool, forking;
+  for (std::size_t i = 0; i < tasks.size(); ++i)
+    (find_integrator(tasks[i].integrator).forks() ? forking : in_pool).push_back(i);
   std::atomic<std::size_t> next{0}, done{0};
   auto worker = [&] {
-    for (std::size_t i = next++; i < tasks.size(); i = next++) {
+    for (std::size_t n = next++; n < in_pool.size(); n = next++) {
+      const std::size_t i = in_pool[n];
       records[i] = run_task(scenes[tasks[i].scene], tasks[i], spec.max_steps);
       ++done;
     }
@@ -334,7 +341,7 @@ std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepS
   std::vector<std::thread> pool;
   for (int j = 0; j < std::max(1, spec.jobs); ++j) pool.emplace_back(worker);
   auto last_report = clock::now();
-  while (done < tasks.size()) {
+  while (done < in_pool.size()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     if (clock::now() - last_report > std::chrono::seconds(2)) {
       report("accuracy", done, tasks.size(), start);
@@ -342,6 +349,10 @@ std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepS
     }
   }
   for (auto& t : pool) t.join();
+  for (const std::size_t i : forking) {
+    records[i] = run_task(scenes[tasks[i].scene], tasks[i], spec.max_steps);
+    ++done;
+  }
 
   // timing: one run at a time on this thread, in rounds: round k times
   // repeat k of every run still within its budget, so that a slow spell of

@@ -57,6 +57,7 @@ class PluginStepper final : public Integrator {
     return run_isolated([&] { return integrate_here(problem, options); }, "stepper '" + name() + "'",
                         isolation_.wall_limit_s, problem.y0(), options.warm_up);
   }
+  bool forks() const override { return isolation_.mode != PluginIsolation::Mode::none; }
 
  private:
   RunResult integrate_here(const Problem& problem, const RunOptions& options) const {
