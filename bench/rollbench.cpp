@@ -36,7 +36,7 @@ int run_list() {
   }
   std::printf("\nscenes (in %s):\n", RB_SCENE_DIR);
   for (const std::string& name : rb::shipped_scene_names()) {
-    const rb::Scene scene = rb::load_scene(name);
+    const rb::Scene scene = rb::read_shipped_scene(name);
     std::printf("  %-18s %s\n", name.c_str(), scene.description.c_str());
   }
   return 0;

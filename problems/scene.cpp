@@ -323,7 +323,13 @@ void check_start(const Scene& s, const RollingBall& model) {
 }
 
 // what scene_load_counts reports (loads may run on several threads)
-std::atomic<long> files_read{0}, models_built{0};
+std::atomic<long> files_read{0}, models_built{0}, exacts_built{0};
+
+// the closed form a scene names (nullptr for "none"), counted
+std::shared_ptr<const ExactSolution> build_exact(const Scene& scene, const RollingBall& model) {
+  ++exacts_built;
+  return make_exact(scene, model);
+}
 
 }  // namespace
 
@@ -334,14 +340,26 @@ struct SceneModel {
   SceneBall ball;
   double gravity;
   RollingBall model;
+  // the closed form the load checked, and what it depends on besides the model
+  std::string exact_name;
+  SceneStart start;
+  std::shared_ptr<const ExactSolution> exact;
 
   bool made_of(const Scene& s) const {
     return s.landscape == landscape && s.params == params && s.ball.radius == ball.radius &&
            s.ball.mass == ball.mass && s.ball.inertia == ball.inertia && s.gravity == gravity;
   }
+  // the scene may be changed after the load (a sweep's t_end): the exact
+  // solution is reused only when nothing it was made from changed
+  bool exact_fits(const Scene& s) const {
+    const SceneStart& a = s.start;
+    return made_of(s) && s.exact == exact_name && a.contact == start.contact && a.omega == start.omega &&
+           a.velocity == start.velocity && a.horizontal_velocity == start.horizontal_velocity &&
+           a.spin == start.spin && a.orientation == start.orientation;
+  }
 };
 
-SceneLoadCounts scene_load_counts() { return {files_read.load(), models_built.load()}; }
+SceneLoadCounts scene_load_counts() { return {files_read.load(), models_built.load(), exacts_built.load()}; }
 
 RollingBall make_model(const Scene& scene) {
   ++models_built;
@@ -384,22 +402,28 @@ Scene parse_scene(std::string_view json_text, const std::string& source) {
   Scene scene = read_scene(parse_json(json_text), source);
   RollingBall model = make_model(scene);
   check_start(scene, model);
-  make_exact(scene, model);  // throws (key "exact") when it does not fit the scene
+  auto exact = build_exact(scene, model);  // throws (key "exact") when it does not fit the scene
   scene.text = std::string(json_text);
-  scene.checked_model = std::make_shared<const SceneModel>(
-      SceneModel{scene.landscape, scene.params, scene.ball, scene.gravity, std::move(model)});
+  scene.checked_model = std::make_shared<const SceneModel>(SceneModel{
+      scene.landscape, scene.params, scene.ball, scene.gravity, std::move(model), scene.exact, scene.start, exact});
   return scene;
 }
 
-Scene load_scene_file(const std::string& path) {
+namespace {
+
+std::string read_scene_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in || std::filesystem::is_directory(path))
     throw InputError("cannot read the scene file '" + path + "'", "scene");
   std::ostringstream text;
   text << in.rdbuf();
   ++files_read;
-  return parse_scene(text.str(), path);
+  return text.str();
 }
+
+}  // namespace
+
+Scene load_scene_file(const std::string& path) { return parse_scene(read_scene_text(path), path); }
 
 std::vector<std::string> shipped_scene_names() {
   std::vector<std::string> names;
@@ -422,11 +446,16 @@ Scene load_scene(const std::string& name_or_path) {
   return load_scene_file(std::string(RB_SCENE_DIR) + "/" + name_or_path + ".json");
 }
 
+Scene read_shipped_scene(const std::string& name) {
+  const std::string path = std::string(RB_SCENE_DIR) + "/" + name + ".json";
+  return read_scene(parse_json(read_scene_text(path)), path);
+}
+
 Problem make_problem(const Scene& scene) {
   const SceneModel* checked = scene.checked_model.get();
   RollingBall model = checked != nullptr && checked->made_of(scene) ? checked->model : make_model(scene);
   const FlatState y0 = start_state(scene, model);
-  auto exact = make_exact(scene, model);
+  auto exact = checked != nullptr && checked->exact_fits(scene) ? checked->exact : build_exact(scene, model);
   return Problem(scene.name, std::move(model), y0, scene.t_end, scene.domain, std::move(exact));
 }
 

@@ -73,6 +73,10 @@ std::vector<std::string> shipped_scene_names();
 // (key "scene") listing the shipped ones.
 Scene load_scene(const std::string& name_or_path);
 
+// A shipped scene's fields, read and checked as a load does, without its
+// model or closed form (nothing compiled): what `rollbench list` prints.
+Scene read_shipped_scene(const std::string& name);
+
 // The model of a scene: its landscape with the params, the ball and gravity.
 RollingBall make_model(const Scene& scene);
 
@@ -89,12 +93,13 @@ FlatState start_state(const Scene& scene, const RollingBall& model);
 // The problem of a scene, with its exact solution when the scene names one.
 Problem make_problem(const Scene& scene);
 
-// Scene files read and scene models built (each compiles a formula) in this
-// process so far: a load does each once, and make_problem after it neither
-// (the tests count them).
+// Scene files read, scene models built (each compiles a formula) and closed
+// forms built in this process so far: a load does each once, and make_problem
+// after it none (the tests count them).
 struct SceneLoadCounts {
   long files_read = 0;
   long models_built = 0;
+  long exacts_built = 0;  // closed forms checked and built (make_exact)
 };
 SceneLoadCounts scene_load_counts();
 

@@ -52,6 +52,9 @@ CC=clang-14 CXX=clang++-14 cmake -S . -B "$build" "${generator[@]}" -DCMAKE_BUIL
 cmake --build "$build" -j "$jobs"
 echo "== robustness: built in $((SECONDS - start)) s"
 
+# a fuzzer's failure is printed again at the very end: CI shows only the
+# last lines, which the sanitizer ctest run would otherwise fill
+fuzz_failures=""
 run_fuzzers() {
   local failed=0 summary="" t
   for t in "${targets[@]}"; do
@@ -70,8 +73,10 @@ run_fuzzers() {
     found=$(find "$artifacts" -type f \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' -o -name 'oom-*' \) | wc -l)
     if [ "$rc" -ne 0 ] || [ "$found" -ne 0 ] || grep -q "runtime error:" "$log"; then
       failed=1
-      echo "!! $t FAILED (exit $rc, $found inputs saved in $artifacts); the end of $log:"
-      tail -n 60 "$log"
+      local report
+      report="!! $t FAILED (exit $rc, $found inputs saved in $artifacts); the end of $log:"$'\n'"$(tail -n 60 "$log")"
+      echo "$report"
+      fuzz_failures+="$report"$'\n'
     fi
     summary+=$(printf '  %-13s %10s runs %7s runs/s  corpus %5s  exit %s' "$t" "${execs:-?}" "${rate:-?}" \
       "$(find "$corpus" -type f | wc -l)" "$rc")$'\n'
@@ -87,5 +92,6 @@ if [ "$parts" != fuzz ]; then
   echo "== robustness: the test suite under ASan + UBSan"
   ctest --test-dir "$build" -j "$jobs" --output-on-failure --timeout 900 || status=1
 fi
+[ -z "$fuzz_failures" ] || printf '== robustness: the fuzzers failed (as above):\n%s' "$fuzz_failures"
 echo "== robustness: $([ "$status" -eq 0 ] && echo passed || echo FAILED) in $((SECONDS - start)) s"
 exit "$status"

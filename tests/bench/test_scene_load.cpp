@@ -37,5 +37,30 @@ TEST(SceneLoad, MakeProblemReusesTheLoadedModelUntilTheSceneChanges) {
   EXPECT_TRUE(changed.model().anisotropic());
 }
 
+TEST(SceneLoad, MakeProblemReusesTheClosedFormTheLoadChecked) {
+  Scene scene = load_scene("plane");
+  ASSERT_NE(scene.exact, "none");
+  const long built = scene_load_counts().exacts_built;
+  const Problem first = make_problem(scene);
+  ASSERT_NE(first.exact(), nullptr);
+  EXPECT_EQ(scene_load_counts().exacts_built, built);
+  // another start is another closed form, built and checked anew
+  scene.start.contact.x() += 0.25;
+  const Problem moved = make_problem(scene);
+  EXPECT_EQ(scene_load_counts().exacts_built, built + 1);
+  EXPECT_NE(moved.exact()->at(0.0).alpha, first.exact()->at(0.0).alpha);
+}
+
+TEST(SceneLoad, ReadingAShippedSceneForItsDescriptionCompilesNothing) {
+  const SceneLoadCounts before = scene_load_counts();
+  const Scene read = read_shipped_scene("chaplygin-valley");
+  const SceneLoadCounts after = scene_load_counts();
+  EXPECT_EQ(after.files_read - before.files_read, 1);
+  EXPECT_EQ(after.models_built, before.models_built);
+  EXPECT_EQ(after.exacts_built, before.exacts_built);
+  EXPECT_EQ(read.description, load_scene("chaplygin-valley").description);
+  EXPECT_FALSE(read.description.empty());
+}
+
 }  // namespace
 }  // namespace rb

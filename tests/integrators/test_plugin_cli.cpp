@@ -9,15 +9,15 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/cli_run.hpp"
+#include "tests/example_steppers.hpp"
 
 namespace rb {
 namespace {
 
+using testing::example_stepper;
 using testing::cli_temp_file;
 using testing::run_rollbench;
 using testing::slurp;
-
-std::string library(const std::string& name) { return std::string(RB_STEPPER_DIR) + "/lib" + name + ".so"; }
 
 const nlohmann::json* order_of(const nlohmann::json& report, const std::string& integrator) {
   for (const auto& o : report["orders"])
@@ -30,7 +30,7 @@ TEST(PluginCli, RunSweepsTheExampleSteppersAndMeasuresTheirOrders) {
   const testing::CliOutcome o = run_rollbench(
       "run --preset quick --no-stability --repeats 1 --scenes bowl-planar --h 2^-4..2^-9 "
       "--integrators midpoint-plugin,exp-euler-plugin,midpoint,exp-euler --stepper " +
-      library("midpoint_stepper") + " --stepper " + library("lie_euler_stepper") + " --out " + report_path.string());
+      example_stepper("midpoint_stepper") + " --stepper " + example_stepper("lie_euler_stepper") + " --out " + report_path.string());
   ASSERT_EQ(o.code, 0) << o.err;
   const nlohmann::json report = nlohmann::json::parse(slurp(report_path));
   // each plug-in measures as its built-in twin does (exp-euler's omega
@@ -74,7 +74,7 @@ TEST(PluginCli, RunSweepsTheExampleSteppersAndMeasuresTheirOrders) {
 }
 
 TEST(PluginCli, ListAndTrajectoryTakeSteppers) {
-  const testing::CliOutcome list = run_rollbench("list --stepper " + library("midpoint_stepper"));
+  const testing::CliOutcome list = run_rollbench("list --stepper " + example_stepper("midpoint_stepper"));
   ASSERT_EQ(list.code, 0) << list.err;
   EXPECT_NE(list.out.find("  midpoint-plugin              plugin           2  fixed    explicit midpoint rule in C"),
             std::string::npos)
@@ -82,13 +82,13 @@ TEST(PluginCli, ListAndTrajectoryTakeSteppers) {
   const std::filesystem::path csv = cli_temp_file("t.csv");
   const testing::CliOutcome t =
       run_rollbench("trajectory valley-sideways --integrator midpoint-plugin --h 0.01 --t-end 1 --out " + csv.string() +
-                    " --stepper " + library("midpoint_stepper"));
+                    " --stepper " + example_stepper("midpoint_stepper"));
   EXPECT_EQ(t.code, 0) << t.err;
   EXPECT_EQ(t.out.rfind("midpoint-plugin on valley-sideways: ok at t = 1 (101 rows", 0), 0u) << t.out;
   // a failing step: the run stops early (exit 3) with the plug-in's reason
   const testing::CliOutcome f =
       run_rollbench("trajectory valley-sideways --integrator fails-stepper --h 0.0625 --out " + csv.string() +
-                    " --stepper " + library("fails_stepper"));
+                    " --stepper " + example_stepper("fails_stepper"));
   EXPECT_EQ(f.code, 3);
   EXPECT_EQ(f.err,
             "rollbench: run stopped early at t = 0.5: error: stepper 'fails-stepper' returned error code 7 at t = 0.5: "
@@ -100,7 +100,7 @@ TEST(PluginCli, AFailingStepperIsAFailedRunInTheReport) {
   const testing::CliOutcome o = run_rollbench(
       "run --preset quick --no-stability --repeats 1 --scenes valley-sideways --h 0.0625 "
       "--integrators fails-stepper,nan-stepper,rk4 --stepper " +
-      library("fails_stepper") + " --stepper " + library("nan_stepper") + " --out " + report_path.string());
+      example_stepper("fails_stepper") + " --stepper " + example_stepper("nan_stepper") + " --out " + report_path.string());
   ASSERT_EQ(o.code, 0) << o.err;
   const nlohmann::json report = nlohmann::json::parse(slurp(report_path));
   ASSERT_EQ(report["runs"].size(), 3u);
@@ -117,8 +117,8 @@ TEST(PluginCli, AFailingStepperIsAFailedRunInTheReport) {
 }
 
 TEST(PluginCli, ABrokenStepperExitsWithTwoNamingTheFileAndTheSymbol) {
-  const std::string no_step = library("no_step_stepper"), bad_abi = library("bad_abi_stepper"),
-                    example = library("midpoint_stepper");
+  const std::string no_step = example_stepper("no_step_stepper"), bad_abi = example_stepper("bad_abi_stepper"),
+                    example = example_stepper("midpoint_stepper");
   const testing::CliOutcome a = run_rollbench("run --preset quick --out x.json --stepper " + no_step);
   EXPECT_EQ(a.code, 2);
   EXPECT_EQ(a.err, "rollbench: 'stepper': '" + no_step +

@@ -12,19 +12,20 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/cli_run.hpp"
+#include "tests/example_steppers.hpp"
 
 namespace rb {
 namespace {
 
+using testing::example_stepper;
+using testing::example_stepper_dir;
 using testing::cli_temp_file;
 using testing::run_rollbench;
 using testing::slurp;
 
-std::string library(const std::string& name) { return std::string(RB_STEPPER_DIR) + "/lib" + name + ".so"; }
-
 std::string steppers(std::initializer_list<const char*> names) {
   std::string out;
-  for (const char* name : names) out += " --stepper " + library(name);
+  for (const char* name : names) out += " --stepper " + example_stepper(name);
   return out;
 }
 
@@ -133,7 +134,7 @@ TEST(PluginIsolation, ALieViewPluginOffSo3IsTheStatusOffGroupInTheReport) {
 }
 
 TEST(PluginIsolation, AFolderGivenAsStepperIsNamedAsOne) {
-  const std::string folder = std::string(RB_STEPPER_DIR);
+  const std::string folder = example_stepper_dir();
   const testing::CliOutcome o = run_rollbench("list --stepper " + folder);
   EXPECT_EQ(o.code, 2);
   EXPECT_EQ(o.err, "rollbench: 'stepper': '" + folder +

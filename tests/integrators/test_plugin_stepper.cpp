@@ -11,17 +11,17 @@
 #include <filesystem>
 #include <fstream>
 
-#include "integrators/steppers/plugin_stepper.hpp"
 #include "integrators/registry.hpp"
+#include "integrators/steppers/plugin_stepper.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
 #include "problems/so3.hpp"
+#include "tests/example_steppers.hpp"
 
 namespace rb {
 namespace {
 
-std::string library(const std::string& name) { return std::string(RB_STEPPER_DIR) + "/lib" + name + ".so"; }
-
+using testing::example_stepper;
 RunOptions every_quarter(double h, double t_end) {
   RunOptions o;
   o.h = h;
@@ -50,7 +50,7 @@ void expect_same_cost(const Cost& a, const Cost& b) {
 }
 
 TEST(PluginStepper, TheExampleDeclaresItsFacts) {
-  const std::unique_ptr<Integrator> m = load_plugin_stepper(library("midpoint_stepper"));
+  const std::unique_ptr<Integrator> m = load_plugin_stepper(example_stepper("midpoint_stepper"));
   EXPECT_EQ(m->name(), "midpoint-plugin");
   EXPECT_EQ(m->family(), "plugin");
   EXPECT_EQ(m->declared_order(), 2);
@@ -58,11 +58,11 @@ TEST(PluginStepper, TheExampleDeclaresItsFacts) {
   EXPECT_EQ(m->description(),
             "explicit midpoint rule in C, loaded with --stepper (examples/midpoint_stepper.c) "
             "(plug-in, flat view, " +
-                library("midpoint_stepper") + ")");
+                example_stepper("midpoint_stepper") + ")");
 }
 
 TEST(PluginStepper, GivesTheBuiltInMidpointsNumbersAndCounts) {
-  const std::unique_ptr<Integrator> plugin = load_plugin_stepper(library("midpoint_stepper"));
+  const std::unique_ptr<Integrator> plugin = load_plugin_stepper(example_stepper("midpoint_stepper"));
   for (const char* scene : {"valley-sideways", "chaplygin-valley"}) {
     const Problem problem = make_problem(load_scene(scene));
     const RunOptions o = every_quarter(1.0 / 64.0, 2.0);
@@ -80,7 +80,7 @@ TEST(PluginStepper, GivesTheBuiltInMidpointsNumbersAndCounts) {
 }
 
 TEST(PluginStepper, TheLieGroupExampleKeepsROnSo3AndCountsItsExponentials) {
-  const std::unique_ptr<Integrator> plugin = load_plugin_stepper(library("lie_euler_stepper"));
+  const std::unique_ptr<Integrator> plugin = load_plugin_stepper(example_stepper("lie_euler_stepper"));
   EXPECT_EQ(plugin->declared_order(), 1);
   const Problem problem = make_problem(load_scene("chaplygin-valley"));  // R feeds back into the motion
   const RunOptions o = every_quarter(1.0 / 256.0, 2.0);
@@ -123,7 +123,7 @@ TEST(PluginStepper, TheCallbacksEvaluateTheProblemAndCountEachCall) {
 }
 
 TEST(PluginStepper, AnErrorCodeIsAFailedRunWithThePluginsMessage) {
-  const std::unique_ptr<Integrator> plugin = load_plugin_stepper(library("fails_stepper"));
+  const std::unique_ptr<Integrator> plugin = load_plugin_stepper(example_stepper("fails_stepper"));
   const Problem problem = make_problem(load_scene("valley-sideways"));
   const RunOptions o = every_quarter(1.0 / 16.0, 2.0);
   const RunResult run = plugin->integrate(problem, o);
@@ -140,7 +140,7 @@ TEST(PluginStepper, AnErrorCodeIsAFailedRunWithThePluginsMessage) {
 }
 
 TEST(PluginStepper, ANonFiniteStateIsTheUsualDivergedStatus) {
-  const std::unique_ptr<Integrator> plugin = load_plugin_stepper(library("nan_stepper"));
+  const std::unique_ptr<Integrator> plugin = load_plugin_stepper(example_stepper("nan_stepper"));
   const RunResult run = plugin->integrate(make_problem(load_scene("valley-sideways")), every_quarter(1.0 / 16.0, 2.0));
   EXPECT_EQ(run.status, Status::diverged);
   EXPECT_EQ(run.stop_time, 0.5);
@@ -151,8 +151,8 @@ TEST(PluginStepper, AnIsolatedRunReturnsWhatTheInProcessRunReturns) {
   const Problem problem = make_problem(load_scene("chaplygin-valley"));
   const RunOptions o = every_quarter(1.0 / 64.0, 2.0);
   for (const char* name : {"midpoint_stepper", "lie_euler_stepper", "fails_stepper"}) {
-    const RunResult a = load_plugin_stepper(library(name))->integrate(problem, o);  // a child process
-    const RunResult b = load_plugin_stepper(library(name), in_process())->integrate(problem, o);
+    const RunResult a = load_plugin_stepper(example_stepper(name))->integrate(problem, o);  // a child process
+    const RunResult b = load_plugin_stepper(example_stepper(name), in_process())->integrate(problem, o);
     EXPECT_EQ(a.status, b.status) << name;
     EXPECT_EQ(a.message, b.message) << name;
     EXPECT_EQ(a.stop_time, b.stop_time) << name;
@@ -171,19 +171,19 @@ TEST(PluginStepper, ACrashAnAbortAndAHangAreStatusesOfTheRun) {
   const Problem problem = make_problem(load_scene("valley-sideways"));
   const RunOptions o = every_quarter(1.0 / 16.0, 2.0);
   const PluginIsolation one_second{PluginIsolation::Mode::process, 1.0};
-  const RunResult crash = load_plugin_stepper(library("crash_stepper"), one_second)->integrate(problem, o);
+  const RunResult crash = load_plugin_stepper(example_stepper("crash_stepper"), one_second)->integrate(problem, o);
   EXPECT_EQ(crash.status, Status::crashed);
   EXPECT_EQ(crash.message,
             "stepper 'crash-stepper' crashed: its process was killed by signal 11 (SIGSEGV: Segmentation fault); its "
             "state and cost are lost");
   EXPECT_EQ(crash.stop_time, 0.0);
   EXPECT_EQ(crash.final_state, problem.y0());
-  const RunResult abort = load_plugin_stepper(library("abort_stepper"), one_second)->integrate(problem, o);
+  const RunResult abort = load_plugin_stepper(example_stepper("abort_stepper"), one_second)->integrate(problem, o);
   EXPECT_EQ(abort.status, Status::crashed);
   EXPECT_EQ(abort.message,
             "stepper 'abort-stepper' crashed: its process was killed by signal 6 (SIGABRT: Aborted); its state and "
             "cost are lost");
-  const RunResult hang = load_plugin_stepper(library("hang_stepper"), one_second)->integrate(problem, o);
+  const RunResult hang = load_plugin_stepper(example_stepper("hang_stepper"), one_second)->integrate(problem, o);
   EXPECT_EQ(hang.status, Status::timeout);
   EXPECT_EQ(hang.message,
             "stepper 'hang-stepper' was still running after the wall-clock limit of 1 s (--stepper-timeout) and was "
@@ -197,7 +197,7 @@ TEST(PluginStepper, AnInputErrorInTheChildIsThrownAgainInTheParent) {
   const Problem problem = make_problem(load_scene("valley-sideways"));
   for (const PluginIsolation& isolation : {PluginIsolation{}, in_process()}) {
     try {
-      load_plugin_stepper(library("midpoint_stepper"), isolation)->integrate(problem, o);
+      load_plugin_stepper(example_stepper("midpoint_stepper"), isolation)->integrate(problem, o);
       ADD_FAILURE() << "h = -1 was taken";
     } catch (const InputError& e) {
       EXPECT_EQ(e.key(), "h");
@@ -210,7 +210,7 @@ TEST(PluginStepper, ALieViewStateOffSo3IsTheStatusOffGroup) {
   const Problem problem = make_problem(load_scene("valley-sideways"));
   const RunOptions o = every_quarter(1.0 / 16.0, 2.0);
   for (const PluginIsolation& isolation : {PluginIsolation{}, in_process()}) {
-    const RunResult run = load_plugin_stepper(library("off_group_stepper"), isolation)->integrate(problem, o);
+    const RunResult run = load_plugin_stepper(example_stepper("off_group_stepper"), isolation)->integrate(problem, o);
     EXPECT_EQ(run.status, Status::off_group);
     // R scaled by 1.1: R^T R - I = 0.21 I, whose Frobenius norm is 0.21 sqrt(3)
     EXPECT_EQ(run.message,
@@ -223,10 +223,10 @@ TEST(PluginStepper, ALieViewStateOffSo3IsTheStatusOffGroup) {
   // an honest Lie-view method's rounding stays far inside the bound over
   // many steps, and a flat method's drift is not held to it
   RunOptions many = every_quarter(1e-4, 2.0);
-  const RunResult honest = load_plugin_stepper(library("lie_euler_stepper"))->integrate(problem, many);
+  const RunResult honest = load_plugin_stepper(example_stepper("lie_euler_stepper"))->integrate(problem, many);
   EXPECT_EQ(honest.status, Status::ok) << honest.message;
   EXPECT_LT(rotation_defect(rotation_of(honest.final_state)), 1e-3 * kOffGroupBound);
-  const RunResult flat = load_plugin_stepper(library("midpoint_stepper"))->integrate(problem, every_quarter(0.25, 2.0));
+  const RunResult flat = load_plugin_stepper(example_stepper("midpoint_stepper"))->integrate(problem, every_quarter(0.25, 2.0));
   EXPECT_EQ(flat.status, Status::ok) << flat.message;
   EXPECT_GT(rotation_defect(rotation_of(flat.final_state)), kOffGroupBound);
 }
@@ -238,20 +238,20 @@ TEST(PluginStepper, AFolderIsNamedAsOne) {
 }
 
 TEST(PluginStepper, ABrokenLibraryIsRefusedNamingTheFileAndTheSymbol) {
-  const std::string missing = library("no_such_stepper");
+  const std::string missing = example_stepper("no_such_stepper");
   EXPECT_EQ(load_error(missing), "'stepper': '" + missing + "': no such file");
-  const std::string no_step = library("no_step_stepper");
+  const std::string no_step = example_stepper("no_step_stepper");
   EXPECT_EQ(load_error(no_step), "'stepper': '" + no_step +
                                      "' does not export 'rollbench_stepper_step' (see "
                                      "integrators/plugin/rollbench_stepper.h)");
-  const std::string bad_abi = library("bad_abi_stepper");
+  const std::string bad_abi = example_stepper("bad_abi_stepper");
   EXPECT_EQ(load_error(bad_abi), "'stepper': '" + bad_abi +
                                      "': rollbench_stepper_abi_version() is 99, this rollbench takes 1 (rebuild it "
                                      "against integrators/plugin/rollbench_stepper.h)");
-  const std::string bad_order = library("bad_order_stepper");
+  const std::string bad_order = example_stepper("bad_order_stepper");
   EXPECT_EQ(load_error(bad_order), "'stepper': '" + bad_order +
                                        "': rollbench_stepper_info(): the order of 'bad-order-stepper' is 0, not >= 1");
-  const std::string bad_name = library("bad_name_stepper");
+  const std::string bad_name = example_stepper("bad_name_stepper");
   EXPECT_EQ(load_error(bad_name), "'stepper': '" + bad_name +
                                       "': rollbench_stepper_info(): the name 'bad name' may hold only letters, digits "
                                       "and . _ + -");
