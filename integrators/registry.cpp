@@ -28,9 +28,11 @@ namespace {
 std::vector<std::unique_ptr<Integrator>> make_registry() {
   std::vector<std::unique_ptr<Integrator>> r;
   auto add = [&](std::unique_ptr<Integrator> integrator) { r.push_back(std::move(integrator)); };
-  // Every line has one shape: add(<way of stepping>(<method data>, "<name>",
-  // <controller>[, <variant>])); the method data are integrators/methods/,
-  // the ways of stepping integrators/steppers/ (docs/extending.md).
+  // One line a method, each a factory's integrator: add(<way of stepping>(
+  // <method data>, "<name>", <controller>[, <variant>])), the method data in
+  // integrators/methods/, the ways of stepping in integrators/steppers/
+  // (docs/extending.md). Methods with no data file of their own (midpoint,
+  // the baselines) and the libraries' adapters name their variant only.
   using D = DexpinvKind;
   namespace m = methods;
   const std::string constant = kConstantController, pi = "pi";

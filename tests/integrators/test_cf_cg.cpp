@@ -115,7 +115,7 @@ TEST(CfCg, DeclaredOrderInEveryComponentWithAndWithoutFeedback) {
 }
 
 // Composed the other way round, the update's h^3 commutator term has the
-// wrong sign (crouch_grossman.cpp): order 2 in R, and where R feeds back in
+// wrong sign (integrators/methods/cg3.hpp): order 2 in R, and where R feeds back in
 // every component. Printed for docs/integrators.md; the prediction asserted.
 TEST(CfCg, ReversedCompositionLosesOrder) {
   for (const char* name : {"cf4-reversed", "cg3-reversed", "cg4a-reversed"}) {
