@@ -17,7 +17,7 @@ FAMILY_COLOURS = {
     "rkmk": "#d62728",         # red: Lie-group (exp-Euler, Munthe-Kaas)
     "odeint": "#2ca02c",       # green: Boost.Odeint
     "gsl": "#9467bd",          # purple: GSL odeiv2
-    "lie-adaptive": "#ff7f0e",  # orange
+    "rkmk-adaptive": "#ff7f0e",  # orange: RKMK on embedded pairs
     "projection": "#8c564b",   # brown
     "quaternion": "#e377c2",   # pink
     "scipy": "#0fa3b1",        # cyan: SciPy solve_ivp, a peer (docs/peers.md)

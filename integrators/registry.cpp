@@ -1,17 +1,10 @@
 #include "integrators/registry.hpp"
 
-#include "integrators/steppers/baselines.hpp"
-#include "integrators/steppers/commutator_free.hpp"
-#include "integrators/steppers/crouch_grossman.hpp"
-#include "integrators/steppers/exp_product_adaptive.hpp"
-#include "integrators/steppers/gsl.hpp"
-#include "integrators/steppers/explicit_midpoint.hpp"
-#include "integrators/steppers/munthe_kaas.hpp"
-#include "integrators/steppers/odeint.hpp"
-#include "integrators/steppers/rkmk_cayley.hpp"
-#include "integrators/steppers/runge_kutta.hpp"
-#include "integrators/steppers/tableau_methods.hpp"
+#include "integrators/controllers/controller.hpp"
 #include "integrators/methods/bogacki_shampine32.hpp"
+#include "integrators/methods/cf4.hpp"
+#include "integrators/methods/cg3.hpp"
+#include "integrators/methods/cg4a.hpp"
 #include "integrators/methods/dormand_prince54.hpp"
 #include "integrators/methods/dormand_prince853.hpp"
 #include "integrators/methods/euler.hpp"
@@ -20,6 +13,12 @@
 #include "integrators/methods/kutta3.hpp"
 #include "integrators/methods/rk38.hpp"
 #include "integrators/methods/rk4.hpp"
+#include "integrators/steppers/baselines.hpp"
+#include "integrators/steppers/exp_product.hpp"
+#include "integrators/steppers/explicit_midpoint.hpp"
+#include "integrators/steppers/gsl.hpp"
+#include "integrators/steppers/odeint.hpp"
+#include "integrators/steppers/tableau_methods.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {
@@ -29,53 +28,57 @@ namespace {
 std::vector<std::unique_ptr<Integrator>> make_registry() {
   std::vector<std::unique_ptr<Integrator>> r;
   auto add = [&](std::unique_ptr<Integrator> integrator) { r.push_back(std::move(integrator)); };
+  // One line a method, each a factory's integrator: add(<way of stepping>(
+  // <method data>, "<name>", <controller>[, <variant>])), the method data in
+  // integrators/methods/, the ways of stepping in integrators/steppers/
+  // (docs/extending.md). Methods with no data file of their own (midpoint,
+  // the baselines) and the libraries' adapters name their variant only.
   using D = DexpinvKind;
-  namespace t = methods;
+  namespace m = methods;
+  const std::string constant = kConstantController, pi = "pi";
 
   // classical explicit Runge-Kutta on the flat view
-  add(std::make_unique<RungeKutta>(t::euler()));
-  add(std::make_unique<RungeKutta>(t::heun()));
-  add(std::make_unique<RungeKutta>(t::kutta3()));
-  add(std::make_unique<RungeKutta>(t::rk4()));
-  add(std::make_unique<RungeKutta>(t::rk38()));
-  add(std::make_unique<ExplicitMidpoint>());  // docs/extending.md's worked example
+  add(rk_method(m::euler(), "euler", constant));
+  add(rk_method(m::heun(), "heun", constant));
+  add(rk_method(m::kutta3(), "rk3", constant));
+  add(rk_method(m::rk4(), "rk4", constant));
+  add(rk_method(m::rk38(), "rk38", constant));
+  add(explicit_midpoint());  // docs/extending.md's worked example
 
   // Lie-group methods: exp-Euler and Runge-Kutta-Munthe-Kaas
-  add(std::make_unique<MuntheKaas>(t::euler(), "exp-euler"));
-  add(std::make_unique<MuntheKaas>(t::heun(), "rkmk2"));
-  add(std::make_unique<MuntheKaas>(t::kutta3(), "rkmk3"));
-  add(std::make_unique<MuntheKaas>(t::rk4(), "rkmk4"));
-  add(std::make_unique<MuntheKaas>(t::rk4(), "rkmk4-series", D::truncated));
-  add(std::make_unique<MuntheKaas>(t::rk4(), "rkmk4-seminar", D::seminar));
+  add(rkmk_method(m::euler(), "exp-euler", constant));
+  add(rkmk_method(m::heun(), "rkmk2", constant));
+  add(rkmk_method(m::kutta3(), "rkmk3", constant));
+  add(rkmk_method(m::rk4(), "rkmk4", constant));
+  add(rkmk_method(m::rk4(), "rkmk4-series", constant, D::truncated));
+  add(rkmk_method(m::rk4(), "rkmk4-seminar", constant, D::seminar));
 
   // --- lie-group adaptive and baselines ---
   // fixed-step RKMK at high order (what order buys), adaptive RKMK on
   // embedded pairs (what adaptivity buys), and the practitioners' fixes
-  // (one line names a tableau, a way of stepping and a controller)
-  const std::string constant = kConstantController, pi = "pi";
-  add(rkmk_method(t::dormand_prince54(), "rkmk5", constant));
-  add(rkmk_method(t::fehlberg78(), "rkmk8", constant));
-  add(rkmk_method(t::bogacki_shampine32(), "rkmk-bs32-adaptive", pi));
-  add(rkmk_method(t::dormand_prince54(), "rkmk-dp54-adaptive", pi));
-  add(rkmk_method(t::dormand_prince853(), "rkmk-dp853-adaptive", pi));
-  add(rkmk_method(t::fehlberg78(), "rkmk-f78-adaptive", pi));
-  add(std::make_unique<Rk4Projected>());
-  add(std::make_unique<Rk4Projected>(Projection::svd));
-  add(std::make_unique<Rk4Quaternion>());
+  add(rkmk_method(m::dormand_prince54(), "rkmk5", constant));
+  add(rkmk_method(m::fehlberg78(), "rkmk8", constant));
+  add(rkmk_method(m::bogacki_shampine32(), "rkmk-bs32-adaptive", pi));
+  add(rkmk_method(m::dormand_prince54(), "rkmk-dp54-adaptive", pi));
+  add(rkmk_method(m::dormand_prince853(), "rkmk-dp853-adaptive", pi));
+  add(rkmk_method(m::fehlberg78(), "rkmk-f78-adaptive", pi));
+  add(rk4_projected("rk4-projected", Projection::newton_schulz));
+  add(rk4_projected("rk4-projected-svd", Projection::svd));
+  add(rk4_quaternion("rk4-quaternion"));
   // --- end lie-group adaptive and baselines ---
 
   // --- commutator-free and Crouch-Grossman ---
   // products of exponentials only (exp_product.hpp); the -reversed variants
   // compose every product the other way round (order 2 in R, and where R
   // feeds back in every component); then rkmk4 with the Cayley map
-  add(std::make_unique<ExpProductMethod>(schemes::cf4()));
-  add(std::make_unique<ExpProductMethod>(schemes::cg3()));
-  add(std::make_unique<ExpProductMethod>(schemes::cg4a()));
-  add(std::make_unique<ExpProductMethod>(reversed(schemes::cf4(), "cf4-reversed")));
-  add(std::make_unique<ExpProductMethod>(reversed(schemes::cg3(), "cg3-reversed")));
-  add(std::make_unique<ExpProductMethod>(reversed(schemes::cg4a(), "cg4a-reversed")));
-  add(exp_product_adaptive(schemes::cg3_pair()));
-  add(std::make_unique<MuntheKaasCayley>(t::rk4(), "rkmk4-cayley"));
+  add(exp_product_method(m::cf4(), "cf4", constant));
+  add(exp_product_method(m::cg3(), "cg3", constant));
+  add(exp_product_method(m::cg4a(), "cg4a", constant));
+  add(exp_product_method(reversed(m::cf4()), "cf4-reversed", constant));
+  add(exp_product_method(reversed(m::cg3()), "cg3-reversed", constant));
+  add(exp_product_method(reversed(m::cg4a()), "cg4a-reversed", constant));
+  add(exp_product_method(m::cg3_pair(), "cg3-adaptive", pi));
+  add(rkmk_cayley_method(m::rk4(), "rkmk4-cayley", constant));
   // --- end commutator-free and Crouch-Grossman ---
 
   // --- odeint --- (Boost.Odeint steppers on the flat view)
@@ -98,9 +101,9 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   // since at fixed steps its error falls from 1e-3 to rounding within three
   // halvings of h, too few for the order test to see order 8
   for (const char* stepper : {"rk2", "rk4", "rkf45", "rkck", "rk1imp", "rk2imp", "rk4imp"})
-    add(std::make_unique<GslIntegrator>(stepper, GslDrive::fixed_step));
+    add(gsl_method(stepper, GslDrive::fixed_step));
   for (const char* stepper : {"rk2", "rkf45", "rkck", "rk8pd", "rk4imp", "bsimp", "msadams", "msbdf"})
-    add(std::make_unique<GslIntegrator>(stepper, GslDrive::adaptive));
+    add(gsl_method(stepper, GslDrive::adaptive));
   // --- end gsl ---
   return r;
 }

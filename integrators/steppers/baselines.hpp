@@ -1,7 +1,10 @@
 #pragma once
 // What practitioners do instead of a Lie-group method, as baselines for it:
 // a classical method whose rotation is pulled back onto SO(3) after every
-// step. Both are RK4 (4 rhs evaluations a step), fixed-step, order 4.
+// step. Both are RK4 (4 rhs evaluations a step), fixed-step, order 4, each a
+// stepper functor made an integrator by stepped_method. Their RK4 is written
+// out (rk4_step), not summed from methods/rk4.hpp: the same method, whose
+// sums are in another order.
 //
 // - rk4-projected (family "projection"): RK4 on the flat view y in R^14, then
 //   R <- the closest rotation to R (its polar factor, by Newton-Schulz steps,
@@ -14,25 +17,19 @@
 //   R(q) is body to world), then q <- q / |q|. A step: 4 Lie-view rhs
 //   evaluations, one normalisation, and R(q) for the flat state the run
 //   reports (a few dozen flops).
+#include <memory>
+#include <string>
+
 #include "integrators/integrator.hpp"
 
 namespace rb {
 
 enum class Projection { newton_schulz, svd };
 
-class Rk4Projected final : public Integrator {
- public:
-  explicit Rk4Projected(Projection projection = Projection::newton_schulz);
-  RunResult integrate(const Problem& problem, const RunOptions& options) const override;
+// RK4 on the flat view with R projected after every step (family "projection").
+std::unique_ptr<Integrator> rk4_projected(std::string name, Projection projection);
 
- private:
-  Projection projection_;
-};
-
-class Rk4Quaternion final : public Integrator {
- public:
-  Rk4Quaternion();
-  RunResult integrate(const Problem& problem, const RunOptions& options) const override;
-};
+// RK4 on a unit quaternion and z (family "quaternion").
+std::unique_ptr<Integrator> rk4_quaternion(std::string name);
 
 }  // namespace rb

@@ -4,19 +4,12 @@
 #include <array>
 #include <stdexcept>
 
+#include "integrators/controllers/controller.hpp"
+#include "integrators/steppers/exp_product_adaptive.hpp"
 #include "integrators/steppers/exp_product_stages.hpp"
+#include "integrators/steppers/stepped_method.hpp"
 
 namespace rb {
-
-ExpProductScheme reversed(ExpProductScheme scheme, std::string name) {
-  for (ExpProduct& product : scheme.stages) std::reverse(product.begin(), product.end());
-  std::reverse(scheme.update.begin(), scheme.update.end());
-  std::reverse(scheme.embedded.begin(), scheme.embedded.end());
-  scheme.name = std::move(name);
-  scheme.rotation_order = std::min(scheme.order, 2);
-  scheme.source += ", every product composed in the opposite order";
-  return scheme;
-}
 
 namespace {
 
@@ -89,15 +82,15 @@ ExpPlan plan_of(const ExpProductScheme& scheme) {
   return plan;
 }
 
-namespace {
-
-int exponentials_per_step_of(const ExpProductScheme& scheme, bool anisotropic) {
+int exponentials_per_step(const ExpProductScheme& scheme, bool anisotropic) {
   const ExpPlan plan = plan_of(scheme);
   int n = plan.update.count;
   if (anisotropic)
     for (std::size_t i = 1; i < static_cast<std::size_t>(plan.stages); ++i) n += plan.stage[i].count;
   return n;
 }
+
+namespace {
 
 // (plan_of, through the counts, rejects a malformed scheme here, not in a run)
 MethodInfo facts_of(const ExpProductScheme& scheme) {
@@ -106,28 +99,25 @@ MethodInfo facts_of(const ExpProductScheme& scheme) {
           .declared_order = scheme.order,
           .rotation_order = scheme.rotation_order,
           .description = std::to_string(scheme.stages.size()) + "-stage " + scheme.kind +
-                         " method on the Lie-group view, " + std::to_string(exponentials_per_step_of(scheme, true)) +
-                         " exponentials a step (" + std::to_string(exponentials_per_step_of(scheme, false)) +
+                         " method on the Lie-group view, " + std::to_string(exponentials_per_step(scheme, true)) +
+                         " exponentials a step (" + std::to_string(exponentials_per_step(scheme, false)) +
                          " for a homogeneous ball): " + scheme.source,
           .on_group = true};
 }
 
 }  // namespace
 
-ExpProductMethod::ExpProductMethod(ExpProductScheme scheme)
-    : Integrator(facts_of(scheme)), scheme_(std::move(scheme)) {}
-
-int ExpProductMethod::exponentials_per_step(bool anisotropic) const {
-  return exponentials_per_step_of(scheme_, anisotropic);
-}
-
-RunResult ExpProductMethod::integrate(const Problem& problem, const RunOptions& options) const {
-  const ExpPlan plan = plan_of(scheme_);
-  std::array<Vec3, kMaxStages> K;
-  std::array<ZState, kMaxStages> L;
-  std::array<Mat3, kMaxStages> Rs;
-  return drive_fixed_step(problem, options,
-                          ExpProductStep{problem, plan, problem.model().anisotropic(), K, L, Rs});
+std::unique_ptr<Integrator> exp_product_method(ExpProductScheme scheme, std::string name,
+                                               const std::string& controller) {
+  scheme.name = std::move(name);
+  if (controller != kConstantController) return exp_product_adaptive(std::move(scheme), controller);
+  MethodInfo info = facts_of(scheme);
+  return stepped_method(std::move(info), [plan = plan_of(scheme)](const Problem& problem, auto&& drive) {
+    std::array<Vec3, kMaxStages> K;
+    std::array<ZState, kMaxStages> L;
+    std::array<Mat3, kMaxStages> Rs;
+    return drive(ExpProductStep{problem, plan, problem.model().anisotropic(), K, L, Rs});
+  });
 }
 
 }  // namespace rb

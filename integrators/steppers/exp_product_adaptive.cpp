@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "integrators/controllers/controller.hpp"
 #include "integrators/steppers/adaptive_method.hpp"
 #include "integrators/steppers/exp_product_stages.hpp"
 
@@ -82,7 +83,8 @@ class ExpPairStepper {
 
 }  // namespace
 
-std::unique_ptr<Integrator> exp_product_adaptive(ExpProductScheme scheme) {
+std::unique_ptr<Integrator> exp_product_adaptive(ExpProductScheme scheme, const std::string& controller) {
+  (void)filter_controller(controller);  // throws for an unknown one
   if (scheme.embedded_order < 1 || plan_of(scheme).embedded.count == 0)
     throw std::invalid_argument(scheme.name + ": an adaptive method needs an embedded update and its order");
   const ExpPlan plan = plan_of(scheme);
@@ -90,13 +92,13 @@ std::unique_ptr<Integrator> exp_product_adaptive(ExpProductScheme scheme) {
   for (std::size_t i = 1; i < static_cast<std::size_t>(plan.stages); ++i) stage_exps += plan.stage[i].count;
   const int update_exps = plan.update.count + plan.embedded.count;
   MethodInfo info{.name = scheme.name,
-                  .family = scheme.family,
+                  .family = scheme.family + "-adaptive",
                   .declared_order = scheme.order,
                   .embedded_order = scheme.embedded_order,
-                  .controller = "pi",
+                  .controller = controller,
                   .description = "adaptive " + scheme.kind + " method, order " + std::to_string(scheme.order) +
                                  " with an embedded order-" + std::to_string(scheme.embedded_order) +
-                                 " update (error on (rotation vector, z), PI controller): " +
+                                 " update (error on (rotation vector, z), " + controller_title(controller) + " controller): " +
                                  std::to_string(plan.stages - 1) + " rhs and " +
                                  std::to_string(stage_exps + update_exps) + " exponentials an attempt (" +
                                  std::to_string(update_exps) +

@@ -1,6 +1,7 @@
 #pragma once
-// An exponential-product scheme with an embedded update (ExpProductScheme::
-// embedded), adaptive: both updates are products over the same stages; the
+// The adaptive stepper of an exponential-product scheme with an embedded
+// update (ExpProductScheme::embedded; registry lines reach it through
+// exp_product_method, exp_product.hpp): both updates are products over the same stages; the
 // scheme's update propagates, the embedded one only measures the error.
 //
 // - The local error: for R the rotation vector of R_high R_low^T, taken as
@@ -18,14 +19,17 @@
 // exponentials of both updates.
 #include <memory>
 
+#include <string>
+
+#include "integrators/exp_product_scheme.hpp"
 #include "integrators/integrator.hpp"
-#include "integrators/steppers/exp_product.hpp"
 
 namespace rb {
 
-// The scheme's adaptive integrator (its name and family, PI by default).
-// Throws std::invalid_argument for a scheme without an embedded update or a
-// malformed one.
-std::unique_ptr<Integrator> exp_product_adaptive(ExpProductScheme scheme);
+// The scheme's adaptive integrator (its name; family the scheme's +
+// "-adaptive"; controller, a filter, by default). Throws
+// std::invalid_argument for a scheme without an embedded update or a
+// malformed one, InputError for an unknown controller.
+std::unique_ptr<Integrator> exp_product_adaptive(ExpProductScheme scheme, const std::string& controller = "pi");
 
 }  // namespace rb

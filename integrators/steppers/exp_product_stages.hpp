@@ -1,11 +1,13 @@
 #pragma once
-// The step of an exponential-product scheme (exp_product.hpp) as both the
-// fixed-step method and its adaptive pair (exp_product_adaptive.hpp) run it:
+// The step of an exponential-product scheme (integrators/exp_product_scheme.hpp)
+// as both the fixed-step method (exp_product.cpp) and its adaptive pair
+// (exp_product_adaptive.cpp) run it:
 // the scheme planned once, the stages, and a product applied to R_n.
 #include <array>
 
-#include "integrators/fixed_step.hpp"
-#include "integrators/steppers/exp_product.hpp"
+#include "integrators/driver.hpp"
+#include "integrators/exp_product_scheme.hpp"
+#include "integrators/stage_terms.hpp"
 #include "problems/so3.hpp"
 
 namespace rb {

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <array>
 
-#include "integrators/fixed_step.hpp"
 #include "integrators/steppers/rkmk_step.hpp"
+#include "integrators/steppers/stepped_method.hpp"
 
 namespace rb {
 
@@ -31,21 +31,38 @@ MethodInfo facts_of(const Tableau& tableau, std::string name, DexpinvKind dexpin
 
 }  // namespace
 
-MuntheKaas::MuntheKaas(Tableau tableau, std::string name, DexpinvKind dexpinv)
-    : Integrator(facts_of(tableau, std::move(name), dexpinv)), tableau_(std::move(tableau)), dexpinv_(dexpinv) {}
+std::unique_ptr<Integrator> rkmk_fixed(Tableau tableau, std::string name, DexpinvKind dexpinv) {
+  MethodInfo info = facts_of(tableau, std::move(name), dexpinv);
+  return stepped_method(std::move(info), [tableau = std::move(tableau), dexpinv](const Problem& problem,
+                                                                                 auto&& drive) {
+    const StageTerms terms(tableau);
+    std::array<Vec3, kMaxStages> K;
+    std::array<ZState, kMaxStages> L;
+    const bool aniso = problem.model().anisotropic();
+    switch (terms.stages) {
+      case 1: return drive(MkStep<1, ExpCoordinates>{problem, terms, {dexpinv}, aniso, K, L});
+      case 2: return drive(MkStep<2, ExpCoordinates>{problem, terms, {dexpinv}, aniso, K, L});
+      case 3: return drive(MkStep<3, ExpCoordinates>{problem, terms, {dexpinv}, aniso, K, L});
+      case 4: return drive(MkStep<4, ExpCoordinates>{problem, terms, {dexpinv}, aniso, K, L});
+      default: return drive(MkStep<0, ExpCoordinates>{problem, terms, {dexpinv}, aniso, K, L});
+    }
+  });
+}
 
-RunResult MuntheKaas::integrate(const Problem& problem, const RunOptions& options) const {
-  const StageTerms terms(tableau_);
-  std::array<Vec3, kMaxStages> K;
-  std::array<ZState, kMaxStages> L;
-  const bool aniso = problem.model().anisotropic();
-  switch (terms.stages) {
-    case 1: return drive_fixed_step(problem, options, MkStep<1, ExpCoordinates>{problem, terms, {dexpinv_}, aniso, K, L});
-    case 2: return drive_fixed_step(problem, options, MkStep<2, ExpCoordinates>{problem, terms, {dexpinv_}, aniso, K, L});
-    case 3: return drive_fixed_step(problem, options, MkStep<3, ExpCoordinates>{problem, terms, {dexpinv_}, aniso, K, L});
-    case 4: return drive_fixed_step(problem, options, MkStep<4, ExpCoordinates>{problem, terms, {dexpinv_}, aniso, K, L});
-    default: return drive_fixed_step(problem, options, MkStep<0, ExpCoordinates>{problem, terms, {dexpinv_}, aniso, K, L});
-  }
+std::unique_ptr<Integrator> rkmk_cayley_fixed(Tableau tableau, std::string name) {
+  MethodInfo info{.name = std::move(name),
+                  .family = "rkmk",
+                  .declared_order = tableau.order(),
+                  .description = "Runge-Kutta-Munthe-Kaas (" + tableau.name() +
+                                 " tableau) with the Cayley map for coordinates; cayley maps counted as exp, "
+                                 "dcayinv as dexpinv",
+                  .on_group = true};
+  return stepped_method(std::move(info), [tableau = std::move(tableau)](const Problem& problem, auto&& drive) {
+    const StageTerms terms(tableau);
+    std::array<Vec3, kMaxStages> K;
+    std::array<ZState, kMaxStages> L;
+    return drive(MkStep<0, CayleyCoordinates>{problem, terms, {}, problem.model().anisotropic(), K, L});
+  });
 }
 
 }  // namespace rb

@@ -264,7 +264,7 @@ std::unique_ptr<Integrator> rkmk_adaptive(Tableau tableau, std::string name, con
   require_embedded_pair(tableau, controller);
   use_dense = use_dense && tableau.dense_order() > 0;
   MethodInfo info{.name = std::move(name),
-                  .family = "lie-adaptive",
+                  .family = "rkmk-adaptive",
                   .declared_order = tableau.order(),
                   .embedded_order = tableau.embedded_order(),
                   .controller = controller,

@@ -31,7 +31,7 @@
 namespace rb {
 
 // RKMK on the tableau's embedded pair with a controller (a filter:
-// integrators/controllers/), family "lie-adaptive". use_dense = false clamps
+// integrators/controllers/), family "rkmk-adaptive". use_dense = false clamps
 // steps onto the outputs even where the tableau has a dense output (for
 // tests and comparisons). Throws InputError for a tableau without embedded
 // weights or an unknown controller.

@@ -14,8 +14,7 @@
 #include <boost/numeric/odeint/stepper/runge_kutta_fehlberg78.hpp>
 #include <boost/numeric/odeint/util/odeint_error.hpp>
 
-#include "integrators/adaptive.hpp"
-#include "integrators/fixed_step.hpp"
+#include "integrators/driver.hpp"
 
 namespace rb {
 

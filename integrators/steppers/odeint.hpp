@@ -5,7 +5,7 @@
 // Problem::flat_rhs and counts its evaluations in a counter owned by the run.
 //
 // Fixed-step ones run in drive_fixed_step, adaptive ones in drive_adaptive
-// (integrators/adaptive.hpp). Adding a stepper is one factory here and one
+// (integrators/driver.hpp). Adding a stepper is one factory here and one
 // registry line.
 #include <array>
 #include <memory>

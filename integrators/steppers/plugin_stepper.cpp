@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "integrators/fixed_step.hpp"
+#include "integrators/driver.hpp"
 #include "problems/input_error.hpp"
 #include "problems/so3.hpp"
 #include "problems/state.hpp"

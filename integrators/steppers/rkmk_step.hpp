@@ -1,14 +1,15 @@
 #pragma once
 // One Runge-Kutta-Munthe-Kaas step (docs/model.md, "The methods compared"), shared by RKMK with
-// the exponential (munthe_kaas.cpp) and with the Cayley map
-// (rkmk_cayley.cpp): the coordinate map is a parameter.
+// the exponential and with the Cayley map (munthe_kaas.cpp): the coordinate
+// map is a parameter.
 #include <array>
 #include <cmath>
 #include <cstdio>
 
-#include "integrators/cayley.hpp"
-#include "integrators/fixed_step.hpp"
+#include "integrators/driver.hpp"
 #include "integrators/run_book.hpp"
+#include "integrators/stage_terms.hpp"
+#include "problems/cayley.hpp"
 #include "problems/so3.hpp"
 
 namespace rb {

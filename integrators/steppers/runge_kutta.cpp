@@ -2,7 +2,8 @@
 
 #include <array>
 
-#include "integrators/fixed_step.hpp"
+#include "integrators/stage_terms.hpp"
+#include "integrators/steppers/stepped_method.hpp"
 
 namespace rb {
 
@@ -50,21 +51,21 @@ struct RkStep {
 
 }  // namespace
 
-RungeKutta::RungeKutta(Tableau tableau, std::string name)
-    : Integrator(facts_of(tableau, std::move(name))), tableau_(std::move(tableau)) {}
-
-RunResult RungeKutta::integrate(const Problem& problem, const RunOptions& options) const {
-  const StageTerms terms(tableau_);
-  std::array<FlatState, kMaxStages> k;
-  FlatState Y;
-  // the registry's tableaus have 1 to 4 stages, the larger ones go generic
-  switch (terms.stages) {
-    case 1: return drive_fixed_step(problem, options, RkStep<1>{problem, terms, k, Y});
-    case 2: return drive_fixed_step(problem, options, RkStep<2>{problem, terms, k, Y});
-    case 3: return drive_fixed_step(problem, options, RkStep<3>{problem, terms, k, Y});
-    case 4: return drive_fixed_step(problem, options, RkStep<4>{problem, terms, k, Y});
-    default: return drive_fixed_step(problem, options, RkStep<0>{problem, terms, k, Y});
-  }
+std::unique_ptr<Integrator> rk_fixed(Tableau tableau, std::string name) {
+  MethodInfo info = facts_of(tableau, std::move(name));
+  return stepped_method(std::move(info), [tableau = std::move(tableau)](const Problem& problem, auto&& drive) {
+    const StageTerms terms(tableau);
+    std::array<FlatState, kMaxStages> k;
+    FlatState Y;
+    // the registry's tableaus have 1 to 4 stages, the larger ones go generic
+    switch (terms.stages) {
+      case 1: return drive(RkStep<1>{problem, terms, k, Y});
+      case 2: return drive(RkStep<2>{problem, terms, k, Y});
+      case 3: return drive(RkStep<3>{problem, terms, k, Y});
+      case 4: return drive(RkStep<4>{problem, terms, k, Y});
+      default: return drive(RkStep<0>{problem, terms, k, Y});
+    }
+  });
 }
 
 }  // namespace rb

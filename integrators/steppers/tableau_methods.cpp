@@ -16,13 +16,22 @@ void require_embedded_pair(const Tableau& tableau, const std::string& controller
 }
 
 std::unique_ptr<Integrator> rk_method(Tableau tableau, std::string name, const std::string& controller) {
-  if (controller == kConstantController) return std::make_unique<RungeKutta>(std::move(tableau), std::move(name));
+  if (controller == kConstantController) return rk_fixed(std::move(tableau), std::move(name));
   return rk_adaptive(std::move(tableau), std::move(name), controller);
 }
 
-std::unique_ptr<Integrator> rkmk_method(Tableau tableau, std::string name, const std::string& controller) {
-  if (controller == kConstantController) return std::make_unique<MuntheKaas>(std::move(tableau), std::move(name));
+std::unique_ptr<Integrator> rkmk_method(Tableau tableau, std::string name, const std::string& controller,
+                                        DexpinvKind dexpinv) {
+  if (controller == kConstantController) return rkmk_fixed(std::move(tableau), std::move(name), dexpinv);
+  if (dexpinv != DexpinvKind::exact)
+    throw InputError("'" + name + "': only the closed-form dexpinv has an adaptive RKMK", "controller");
   return rkmk_adaptive(std::move(tableau), std::move(name), controller);
+}
+
+std::unique_ptr<Integrator> rkmk_cayley_method(Tableau tableau, std::string name, const std::string& controller) {
+  if (controller != kConstantController)
+    throw InputError("'" + name + "': RKMK with the Cayley map runs at fixed steps only", "controller");
+  return rkmk_cayley_fixed(std::move(tableau), std::move(name));
 }
 
 }  // namespace rb

@@ -4,15 +4,18 @@
 //   rkmk_method(methods::dormand_prince54(), "rkmk5", kConstantController)
 //   rkmk_method(methods::dormand_prince54(), "rkmk-dp54-adaptive", "pi")
 // - "constant": fixed steps of h with the tableau's propagating weights only
-//   (RungeKutta, MuntheKaas): no error estimate is computed;
+//   (rk_fixed, rkmk_fixed: stepped_method): no error estimate is computed;
 // - a filter ("i", "pi", "pid"; integrators/controllers/): adaptive steps on
-//   the tableau's embedded pair (rk_adaptive, rkmk_adaptive), with that
-//   filter as the method's default.
+//   the tableau's embedded pair (rk_adaptive, rkmk_adaptive: adaptive_method),
+//   with that filter as the method's default.
+// The family says the way of stepping, with "-adaptive" for the pairs: rk,
+// rk-adaptive, rkmk, rkmk-adaptive.
 #include <memory>
 #include <string>
 
 #include "integrators/integrator.hpp"
 #include "integrators/tableau.hpp"
+#include "problems/so3.hpp"
 
 namespace rb {
 
@@ -20,8 +23,15 @@ namespace rb {
 std::unique_ptr<Integrator> rk_method(Tableau tableau, std::string name, const std::string& controller);
 
 // Runge-Kutta-Munthe-Kaas on the Lie-group view (family "rkmk", or
-// "lie-adaptive").
-std::unique_ptr<Integrator> rkmk_method(Tableau tableau, std::string name, const std::string& controller);
+// "rkmk-adaptive"). A dexpinv other than the closed form (the truncated
+// series, the seminar's) is a fixed-step variant only: InputError with a
+// filter.
+std::unique_ptr<Integrator> rkmk_method(Tableau tableau, std::string name, const std::string& controller,
+                                        DexpinvKind dexpinv = DexpinvKind::exact);
+
+// RKMK with the Cayley map for coordinates (family "rkmk"), fixed steps
+// only: InputError with a filter.
+std::unique_ptr<Integrator> rkmk_cayley_method(Tableau tableau, std::string name, const std::string& controller);
 
 // What every adaptive method on a tableau needs before it is built: a known
 // filter controller and embedded weights to estimate its error with. Throws

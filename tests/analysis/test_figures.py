@@ -272,7 +272,7 @@ class FiguresOfSyntheticReport(unittest.TestCase):
 
 class Styles(unittest.TestCase):
     def test_families_have_distinct_hues(self):
-        families = ("rk", "rkmk", "odeint", "gsl", "lie-adaptive", "projection", "quaternion")
+        families = ("rk", "rkmk", "odeint", "gsl", "rkmk-adaptive", "projection", "quaternion")
         colours = {style.family_colour(f) for f in families}
         self.assertEqual(len(colours), 7)
         self.assertEqual(style.family_colour("some-new-family"), style.family_colour("some-new-family"))

@@ -6,12 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <string>
 
-#include "integrators/cayley.hpp"
-#include "integrators/steppers/commutator_free.hpp"
-#include "integrators/steppers/crouch_grossman.hpp"
-#include "integrators/steppers/exp_product.hpp"
+#include "integrators/controllers/controller.hpp"
+#include "integrators/methods/cf4.hpp"
+#include "integrators/methods/cg3.hpp"
 #include "integrators/registry.hpp"
+#include "integrators/steppers/exp_product.hpp"
+#include "problems/cayley.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"
 #include "tests/integrators/fixtures.hpp"
@@ -113,7 +115,7 @@ TEST(CfCg, DeclaredOrderInEveryComponentWithAndWithoutFeedback) {
 }
 
 // Composed the other way round, the update's h^3 commutator term has the
-// wrong sign (crouch_grossman.cpp): order 2 in R, and where R feeds back in
+// wrong sign (integrators/methods/cg3.hpp): order 2 in R, and where R feeds back in
 // every component. Printed for docs/integrators.md; the prediction asserted.
 TEST(CfCg, ReversedCompositionLosesOrder) {
   for (const char* name : {"cf4-reversed", "cg3-reversed", "cg4a-reversed"}) {
@@ -146,10 +148,12 @@ TEST(CfCg, ExponentialsCountedPerStep) {
       EXPECT_EQ(run.cost.rhs_evals, e.stages * run.cost.steps) << e.name;
       EXPECT_EQ(run.cost.dexpinv_evals, m.name() == "rkmk4-cayley" ? 3 * run.cost.steps : 0) << e.name;
     }
-    if (const auto* cf = dynamic_cast<const ExpProductMethod*>(&m)) {
-      EXPECT_EQ(cf->exponentials_per_step(false), e.homogeneous) << e.name;
-      EXPECT_EQ(cf->exponentials_per_step(true), e.anisotropic) << e.name;
-    }
+    // the description states the counts exponentials_per_step finds
+    if (m.family() == "cf" || m.family() == "cg")
+      EXPECT_NE(m.description().find(std::to_string(e.anisotropic) + " exponentials a step (" +
+                                     std::to_string(e.homogeneous) + " for a homogeneous ball)"),
+                std::string::npos)
+          << e.name << ": " << m.description();
   }
 }
 
@@ -181,10 +185,10 @@ TEST(CfCg, AnisotropicPathWithHomogeneousInertiaMatchesTheHomogeneousBall) {
 }
 
 TEST(CfCg, MalformedSchemeIsRefused) {
-  ExpProductScheme s = schemes::cg3();
+  ExpProductScheme s = methods::cg3();
   s.stages[1] = {{0.5, 0.5}};  // stage 2 cannot use F_2
   try {
-    ExpProductMethod m(s);
+    (void)exp_product_method(s, "cg3", kConstantController);
     FAIL() << "no error";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "cg3 stage 2 uses a field not yet computed");
@@ -192,9 +196,11 @@ TEST(CfCg, MalformedSchemeIsRefused) {
 }
 
 TEST(CfCg, ReversedComposesEveryProductTheOtherWay) {
-  const ExpProductScheme s = schemes::cf4();
-  const ExpProductScheme r = reversed(s, "cf4-reversed");
+  const ExpProductScheme s = methods::cf4();
+  const ExpProductScheme r = reversed(s);
   EXPECT_EQ(r.name, "cf4-reversed");
+  EXPECT_EQ(exponentials_per_step(r, true), 6);
+  EXPECT_EQ(exponentials_per_step(s, true), 5);
   EXPECT_EQ(r.update.front(), s.update.back());
   EXPECT_EQ(r.stages[3].front(), s.stages[3].back());
   EXPECT_EQ(r.stages[1], s.stages[1]);

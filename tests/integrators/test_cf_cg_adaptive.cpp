@@ -8,9 +8,9 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "integrators/methods/cg3.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/steppers/crouch_grossman.hpp"
-#include "integrators/steppers/exp_product_adaptive.hpp"
+#include "integrators/steppers/exp_product.hpp"
 #include "problems/scene.hpp"
 #include "problems/so3.hpp"
 #include "tests/integrators/fixtures.hpp"
@@ -33,7 +33,7 @@ std::vector<double> weights_of(const ExpProduct& p) {
 }
 
 TEST(CgAdaptive, EmbeddedWeightsHaveOrderTwoAndNotThree) {
-  const ExpProductScheme s = schemes::cg3_pair();
+  const ExpProductScheme s = methods::cg3_pair();
   ASSERT_EQ(s.stages.size(), 3u);
   std::vector<double> c = {0.0};
   for (std::size_t i = 1; i < s.stages.size(); ++i) {
@@ -62,14 +62,14 @@ TEST(CgAdaptive, EmbeddedWeightsHaveOrderTwoAndNotThree) {
 TEST(CgAdaptive, RegisteredAsAdaptiveCrouchGrossman) {
   const Integrator& m = find_integrator("cg3-adaptive");
   EXPECT_TRUE(m.adaptive());
-  EXPECT_EQ(m.family(), "cg");
+  EXPECT_EQ(m.family(), "cg-adaptive");
   EXPECT_EQ(m.controller(), "pi");
   EXPECT_EQ(m.declared_order(), 3);
 }
 
 TEST(CgAdaptive, RefusesASchemeWithoutAnEmbeddedUpdate) {
   try {
-    (void)exp_product_adaptive(schemes::cg3());
+    (void)exp_product_method(methods::cg3(), "cg3", "pi");
     FAIL() << "accepted cg3 without an embedded update";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "cg3: an adaptive method needs an embedded update and its order");

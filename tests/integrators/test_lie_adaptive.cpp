@@ -143,7 +143,7 @@ TEST(LieAdaptive, RegisteredAsAdaptiveLieMethods) {
   const int orders[] = {3, 5, 8, 8};
   for (int k = 0; k < 4; ++k) {
     const Integrator& m = find_integrator(kAdaptive[k]);
-    EXPECT_EQ(m.family(), "lie-adaptive");
+    EXPECT_EQ(m.family(), "rkmk-adaptive");
     EXPECT_TRUE(m.adaptive());
     EXPECT_EQ(m.declared_order(), orders[k]);
   }

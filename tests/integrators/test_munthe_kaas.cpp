@@ -3,9 +3,20 @@
 // the contrast with classical RK whose R drifts.
 #include <gtest/gtest.h>
 
-#include "integrators/steppers/munthe_kaas.hpp"
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "integrators/controllers/controller.hpp"
+#include "integrators/methods/dormand_prince54.hpp"
+#include "integrators/methods/euler.hpp"
+#include "integrators/methods/fehlberg78.hpp"
+#include "integrators/methods/heun.hpp"
+#include "integrators/methods/kutta3.hpp"
+#include "integrators/methods/rk38.hpp"
+#include "integrators/methods/rk4.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/steppers/runge_kutta.hpp"
+#include "integrators/steppers/tableau_methods.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"
 #include "tests/integrators/fixtures.hpp"
@@ -21,7 +32,15 @@ Tableau ralston3() {
   return Tableau("ralston3", 3, {0, 0, 0, 0.5, 0, 0, 0, 0.75, 0}, {2.0 / 9, 1.0 / 3, 4.0 / 9}, {0, 0.5, 0.75});
 }
 
-void expect_same_z_and_rotation_exact(const MuntheKaas& lie, const RungeKutta& classical) {
+// The shipped tableaus a fixed-step RKMK method may name (MethodInfo::tableau).
+Tableau shipped_tableau(const std::string& name) {
+  for (const Tableau& t : {methods::euler(), methods::heun(), methods::kutta3(), methods::rk4(), methods::rk38(),
+                           methods::dormand_prince54(), methods::fehlberg78()})
+    if (t.name() == name) return t;
+  throw std::invalid_argument("no shipped tableau '" + name + "'");
+}
+
+void expect_same_z_and_rotation_exact(const Integrator& lie, const Integrator& classical) {
   const RunOptions o = every(0.1, 2.0, 0.01);
   const RunResult a = lie.integrate(valley(), o);
   const RunResult b = classical.integrate(valley(), o);
@@ -38,18 +57,26 @@ void expect_same_z_and_rotation_exact(const MuntheKaas& lie, const RungeKutta& c
 
 TEST(MuntheKaas, EveryRegisteredLieMethodMatchesItsClassicalTwinInZ) {
   int checked = 0;
+  // every fixed-step RKMK method on a tableau (closed-form dexpinv), read
+  // from the registry
   for (const auto& integrator : registry()) {
-    const auto* lie = dynamic_cast<const MuntheKaas*>(integrator.get());
-    if (!lie) continue;
-    expect_same_z_and_rotation_exact(*lie, RungeKutta(lie->tableau()));
+    const MethodInfo& info = integrator->info();
+    if (info.family != "rkmk" || info.adaptive || info.tableau.empty()) continue;
+    const Tableau tableau = shipped_tableau(info.tableau);
+    expect_same_z_and_rotation_exact(*integrator, *rk_method(tableau, tableau.name(), kConstantController));
     ++checked;
   }
   EXPECT_GE(checked, 6);
+  // and the variants of dexpinv, which change u only
+  for (const char* name : {"rkmk4-series", "rkmk4-seminar"})
+    expect_same_z_and_rotation_exact(find_integrator(name), find_integrator("rk4"));
 }
 
 TEST(MuntheKaas, UserTableauPassesTheSameChecks) {
-  const MuntheKaas lie(ralston3(), "rkmk-ralston3");
-  const RungeKutta classical(ralston3());
+  const std::unique_ptr<Integrator> lie_method = rkmk_method(ralston3(), "rkmk-ralston3", kConstantController);
+  const std::unique_ptr<Integrator> classical_method = rk_method(ralston3(), "ralston3", kConstantController);
+  const Integrator& lie = *lie_method;
+  const Integrator& classical = *classical_method;
   expect_same_z_and_rotation_exact(lie, classical);
   RunOptions fine;
   fine.t_end = 1.0;

@@ -112,7 +112,7 @@ TEST(StepperRecipe, OneTableauAndOneLineEachGiveAFixedAndAnAdaptiveMethod) {
   const Integrator& adaptive = find_integrator("test-rkmk-heun-euler-adaptive");
   EXPECT_EQ(fixed.family(), "rkmk");
   EXPECT_EQ(fixed.controller(), kConstantController);
-  EXPECT_EQ(adaptive.family(), "lie-adaptive");
+  EXPECT_EQ(adaptive.family(), "rkmk-adaptive");
   EXPECT_EQ(adaptive.controller(), "pi");
   EXPECT_TRUE(adaptive.adaptive());
 

@@ -5,7 +5,7 @@
 
 #include <limits>
 
-#include "integrators/fixed_step.hpp"
+#include "integrators/driver.hpp"
 #include "problems/scene.hpp"
 
 namespace rb {

@@ -1,19 +1,16 @@
 #pragma once
-// The stage terms of the tableau steppers; the fixed-step loop itself is
-// part of the one driver (integrators/driver.hpp), included here for the
-// steppers written against it.
+// A tableau's non-zero stage terms, as the tableau steppers (runge_kutta.cpp,
+// munthe_kaas.cpp) and the exponential products (exp_product_stages.hpp) sum
+// them in their step loops.
 #include <array>
-#include <cmath>
-#include <type_traits>
-#include <utility>
+#include <cstddef>
 
-#include "integrators/driver.hpp"
 #include "integrators/tableau.hpp"
 
 namespace rb {
 
 // A tableau's non-zero coefficients, gathered once per run so that the step
-// loops of the tableau methods (runge_kutta.cpp, munthe_kaas.cpp) skip the
+// loops of the tableau steppers (runge_kutta.cpp, munthe_kaas.cpp) skip the
 // zeros without testing them and read no std::vector in the step.
 struct StageTerms {
   struct Row {

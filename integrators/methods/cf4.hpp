@@ -1,20 +1,22 @@
-// CF4: E. Celledoni, A. Marthinsen and B. Owren, "Commutator-free Lie group
-// methods", Future Generation Computer Systems 19 (2003) 341-352, the
+#pragma once
+// Source: E. Celledoni, A. Marthinsen and B. Owren, "Commutator-free Lie
+// group methods", Future Generation Computer Systems 19 (2003) 341-352, the
 // order-4 method with c = (0, 1/2, 1/2, 1):
 //   Y_2 = exp(F_1 / 2) y_0,  Y_3 = exp(F_2 / 2) y_0,
 //   Y_4 = exp(F_3 - F_1 / 2) Y_2,
 //   y_1 = exp((-F_1 + 2 F_2 + 2 F_3 + 3 F_4) / 12) exp((3 F_1 + 2 F_2 + 2 F_3 - F_4) / 12) y_0,
 // products read right to left (the rightmost factor acts first). OpenMC's
-// CF4 depletion integrator has the same stages. Checked here: the z
-// part sums to RK4's tableau, and for R' = hat(omega(t)) R the update's
-// commutator term (1/2)[X_2, X_1] with X_1, X_2 its two exponents is
-// h^3 [omega_1, omega_0] / 12 for omega(t) = omega_0 + t omega_1, the
+// CF4 depletion integrator has the same stages. Checked in test_cf_cg.cpp:
+// the z part sums to RK4's tableau, and for R' = hat(omega(t)) R the
+// update's commutator term (1/2)[X_2, X_1] with X_1, X_2 its two exponents
+// is h^3 [omega_1, omega_0] / 12 for omega(t) = omega_0 + t omega_1, the
 // Magnus series' term; composed the other way it has the opposite sign.
-#include "integrators/steppers/commutator_free.hpp"
+#include "integrators/exp_product_scheme.hpp"
 
-namespace rb::schemes {
+namespace rb::methods {
 
-ExpProductScheme cf4() {
+// order 4, 4 stages
+inline ExpProductScheme cf4() {
   ExpProductScheme s;
   s.name = "cf4";
   s.family = "cf";
@@ -31,4 +33,4 @@ ExpProductScheme cf4() {
   return s;
 }
 
-}  // namespace rb::schemes
+}  // namespace rb::methods
