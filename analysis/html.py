@@ -117,9 +117,14 @@ def index_html(figure_names, summary_markdown, title="rollbench results"):
     contents = "".join(f"<li><a href=\"#{slug(h)}\">{inline(h)}</a></li>" for h in ["Figures"] + sections)
     parts = ["<!DOCTYPE html>", "<html><head><meta charset=\"utf-8\">", f"<title>{html.escape(title)}</title>",
              STYLE, MARK_IMAGES, "</head><body>", f"<h1>{html.escape(title)}</h1>"]
+    # the findings' figures right after its lines, before its tables
+    lines = findings.splitlines()
+    split = next((i for i, line in enumerate(lines) if line.startswith("### ")), len(lines))
     if findings:
-        parts.append(markdown_to_html(findings))
+        parts.append(markdown_to_html("\n".join(lines[:split])))
     parts += [_figure(n) for n in figures if n.startswith(FINDINGS_FIGURES)]
+    if lines[split:]:
+        parts.append(markdown_to_html("\n".join(lines[split:])))
     parts += ["<h2 id=\"contents\">Contents</h2>", f"<ul>{contents}</ul>", "<h2 id=\"figures\">Figures</h2>"]
     parts += [_figure(n) for n in figures if not n.startswith(FINDINGS_FIGURES)]
     parts += [markdown_to_html(rest), "</body></html>"]

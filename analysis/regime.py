@@ -152,7 +152,7 @@ def findings_lines(report, metric=rp.DEFAULT_METRIC, results=None):
     targets = ", ".join(f"{t:.0e}" for t in TARGETS)
     body = "; ".join(parts) if parts else "no same-order flat/Lie pair reached a target"
     return [f"- Regime map ({len(cells(report))} generated scenes × {metric} error {targets}, figures "
-            f"regime-<target>.png): {body}. Cheapest method (of {total} cell × target): {cheapest}; "
+            f"regime-<target>.png): {body}. Cheapest method most often (of {total} cell × target): {cheapest}; "
             f"{total - sum(winners.values())} reached by none."]
 
 
