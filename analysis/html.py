@@ -1,4 +1,5 @@
-"""index.html: summary.md's findings, one table of contents, every figure
+"""index.html: summary.md's findings (with the figures that answer them,
+regime-<target>.png), one table of contents, every other figure
 (the best of each family before all methods) and the rest of summary.md.
 
 summary.md is rendered here (headings, lists, tables, paragraphs, `code`
@@ -79,6 +80,8 @@ def slug(heading):
 
 # figures in this order: the answer per family before every method's curve
 FIGURE_ORDER = ("work-precision-best-", "work-precision-", "convergence-", "tolerance-", "drift-")
+# figures that answer a findings line: shown inside the findings, after them
+FINDINGS_FIGURES = ("regime-",)
 
 
 def ordered_figures(names):
@@ -101,6 +104,11 @@ def split_summary(markdown):
     return "\n".join(lines[heads[0]:end]), "\n".join(rest)
 
 
+def _figure(name):
+    link = html.escape(name, quote=True)
+    return f"<figure><img src=\"{link}\" alt=\"{link}\"><figcaption>{html.escape(name)}</figcaption></figure>"
+
+
 def index_html(figure_names, summary_markdown, title="rollbench results"):
     """The page: the findings, one table of contents, the figures, then the rest of the summary."""
     findings, rest = split_summary(summary_markdown)
@@ -109,12 +117,15 @@ def index_html(figure_names, summary_markdown, title="rollbench results"):
     contents = "".join(f"<li><a href=\"#{slug(h)}\">{inline(h)}</a></li>" for h in ["Figures"] + sections)
     parts = ["<!DOCTYPE html>", "<html><head><meta charset=\"utf-8\">", f"<title>{html.escape(title)}</title>",
              STYLE, MARK_IMAGES, "</head><body>", f"<h1>{html.escape(title)}</h1>"]
+    # the findings' figures right after its lines, before its tables
+    lines = findings.splitlines()
+    split = next((i for i, line in enumerate(lines) if line.startswith("### ")), len(lines))
     if findings:
-        parts.append(markdown_to_html(findings))
+        parts.append(markdown_to_html("\n".join(lines[:split])))
+    parts += [_figure(n) for n in figures if n.startswith(FINDINGS_FIGURES)]
+    if lines[split:]:
+        parts.append(markdown_to_html("\n".join(lines[split:])))
     parts += ["<h2 id=\"contents\">Contents</h2>", f"<ul>{contents}</ul>", "<h2 id=\"figures\">Figures</h2>"]
-    for name in figures:
-        link = html.escape(name, quote=True)
-        parts.append(f"<figure><img src=\"{link}\" alt=\"{link}\"><figcaption>{html.escape(name)}</figcaption>"
-                     "</figure>")
+    parts += [_figure(n) for n in figures if not n.startswith(FINDINGS_FIGURES)]
     parts += [markdown_to_html(rest), "</body></html>"]
     return "\n".join(parts) + "\n"

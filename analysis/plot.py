@@ -3,10 +3,12 @@
 
     analysis/plot.py REPORT.json --out DIR [--metric worst|contact|centre|omega|rotation] [--errors end|max]
                      [--perf PERF.json] [--trajectories DIR] [--ball DIR] [--scenes DIR]
-                     [--rollbench PATH]
+                     [--rollbench PATH] [--scene-figures]
 
 Writes per scene convergence-, work-precision-, work-precision-best-,
-tolerance- and drift-<scene>.png; then stability.png, scenes.png,
+tolerance- and drift-<scene>.png (for a regime study only with
+--scene-figures) and regime-<target>.png (analysis/regime.py); then
+stability.png, scenes.png,
 ball-deforms.png (with --ball), ns-per-step.png (with --perf), summary.md
 and index.html (every figure and the summary in one page). A figure whose
 data the report lacks is skipped with a message; the exit status is 0
@@ -24,7 +26,7 @@ if __package__ in (None, ""):
     sys.path[0] = _root
 
 from analysis import figures, figures_ball, figures_overview, figures_precision, html, landscape  # noqa: E402
-from analysis import style, summary  # noqa: E402
+from analysis import regime, style, summary  # noqa: E402
 from analysis import report as rp  # noqa: E402
 
 DEFAULT_SCENES = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "problems", "scenes")
@@ -34,9 +36,12 @@ class Options:
     """What the figures are drawn from beside the report."""
 
     def __init__(self, metric=rp.DEFAULT_METRIC, perf=None, trajectories=None, ball=None,
-                 scene_dir=DEFAULT_SCENES, rollbench=landscape.DEFAULT_ROLLBENCH):
+                 scene_dir=DEFAULT_SCENES, rollbench=landscape.DEFAULT_ROLLBENCH, scene_figures=None):
         self.metric, self.perf, self.trajectories, self.ball = metric, perf, trajectories, ball
         self.scene_dir, self.rollbench = scene_dir, rollbench
+        # per-scene figures: None draws them unless the report is a regime study
+        # (dozens of generated scenes: minutes of figures nobody looks at one by one)
+        self.scene_figures = scene_figures
 
 
 def build_figures(report, options=None, messages=None, log=None):
@@ -61,6 +66,11 @@ def build_figures(report, options=None, messages=None, log=None):
     scenes = rp.scenes(report)
     if not scenes:
         messages.append("the report has no runs and no stability results: no per-scene figures")
+    per_scene = not (options.scene_figures is False or (options.scene_figures is None and regime.cells(report)))
+    if not per_scene:
+        messages.append(f"skipped the per-scene figures and scenes.png of {len(scenes)} scenes"
+                        + (" (a regime study: --scene-figures draws them)" if regime.cells(report) else ""))
+        scenes = []
     for i, scene in enumerate(scenes):
         if log:
             log(f"figures for {scene} ({i + 1} of {len(scenes)})")
@@ -71,9 +81,14 @@ def build_figures(report, options=None, messages=None, log=None):
                 lambda: figures_precision.work_precision_best(report, scene, palette, metric))
         attempt(f"tolerance-{scene}.png", lambda: figures_precision.tolerance(report, scene, palette, metric))
         attempt(f"drift-{scene}.png", lambda: figures.drift(report, scene, palette))
+    if regime.cells(report):  # the regime study's heat maps, regime-<target>.png
+        results = regime.regime_results(report, metric)
+        for target in regime.TARGETS:
+            attempt(regime.figure_name(target), lambda: regime.heat_map(report, target, metric, results))
     attempt("stability.png", lambda: figures_overview.stability(report, palette))
-    attempt("scenes.png", lambda: figures_overview.scenes(report, options.scene_dir, options.trajectories,
-                                                          messages, options.rollbench))
+    if per_scene:
+        attempt("scenes.png", lambda: figures_overview.scenes(report, options.scene_dir, options.trajectories,
+                                                              messages, options.rollbench))
     if options.ball is not None:
         attempt("ball-deforms.png", lambda: figures_ball.ball_deforms(options.ball))
     if options.perf is not None:
@@ -130,6 +145,8 @@ def main(argv=None):
     parser.add_argument("--trajectories", help="folder of <scene>.csv trajectories (rollbench trajectory)")
     parser.add_argument("--ball", help="folder of euler.csv, rk4.csv, rkmk4.csv trajectories for ball-deforms.png")
     parser.add_argument("--scenes", default=DEFAULT_SCENES, help="folder of scene JSON files (default: %(default)s)")
+    parser.add_argument("--scene-figures", action="store_true", default=None,
+                        help="draw the per-scene figures of a regime study too (default: only its heat maps)")
     parser.add_argument("--rollbench", default=landscape.DEFAULT_ROLLBENCH,
                         help="the rollbench binary that evaluates the landscapes (default: %(default)s)")
     args = parser.parse_args(argv)
@@ -150,7 +167,7 @@ def main(argv=None):
             print(f"error: cannot read the benchmark file '{args.perf}': {e}", file=sys.stderr)
             return 2
     write_all(report, args.out, Options(args.metric, perf, args.trajectories, args.ball, args.scenes,
-                                        args.rollbench))
+                                        args.rollbench, args.scene_figures))
     return 0
 
 

@@ -17,7 +17,7 @@ import sys
 if __package__ in (None, ""):
     sys.path[0] = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
-from analysis import findings  # noqa: E402
+from analysis import findings, regime  # noqa: E402
 from analysis import report as rp  # noqa: E402
 from analysis import summary  # noqa: E402
 
@@ -39,7 +39,7 @@ def results_markdown(report, title, command, wall_s=None):
     if wall_s is not None:
         lines.append(f"- the sweep took {wall_s:.0f} s wall")
     lines.append("")
-    body = findings.findings_section(report)
+    body = findings.findings_section(report) + regime.regime_section(report)
     # one level down: the page's title is the only level-1 heading
     lines += ["#" + line if line.startswith("##") else line for line in body]
     return "\n".join(lines).rstrip() + "\n"

@@ -5,7 +5,7 @@ import math
 
 import re
 
-from analysis import costs, findings, pairs
+from analysis import costs, findings, pairs, regime
 from analysis import markdown as md
 from analysis import report as rp
 
@@ -201,7 +201,8 @@ def failure_counts(report):
 
 def summary_markdown(report, metric=rp.DEFAULT_METRIC):
     top = ["# rollbench summary", ""] + findings.findings_section(report, metric)
-    body = (header_section(report, metric) + orders_section(report) + costs.cost_section(report, metric)
+    body = (header_section(report, metric) + regime.regime_section(report, metric) + orders_section(report)
+            + costs.cost_section(report, metric)
             + pairs.pairs_section(report, metric) + tolerance_section(report) + stability_section(report)
             + failures_section(report))
     provenance = ["## Provenance", ""] + body[:body.index("")] + [f"- run statuses: {failure_counts(report)}", ""]

@@ -162,7 +162,7 @@ int run_landscape(const LandscapeArgs& a) {
 }
 
 struct RunArgs {
-  std::string preset, scenes, integrators, hs, tols, out, shard, cache, controller;
+  std::string preset, scenes, integrators, hs, tols, out, shard, cache, controller, regime;
   int repeats = -1, jobs = -1;
   double dt_out = std::nan("");  // NaN: not given
   bool no_stability = false;
@@ -189,11 +189,17 @@ void write_json(const nlohmann::json& j, const std::string& path) { rb::write_ou
 int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_methods) {
   // without --preset: the default preset's sweep, not its stability study
   // (which has its own scenes and methods, and minutes of runs)
-  rb::SweepSpec spec = rb::preset(a.preset.empty() ? "default" : a.preset);
-  if (a.preset.empty()) {
+  // --regime alone is the regime preset with that grid
+  if (!a.regime.empty() && !a.preset.empty() && a.preset != "regime")
+    throw rb::InputError("the grid goes with --preset regime (or no preset), not '" + a.preset + "'", "regime");
+  rb::SweepSpec spec = rb::preset(a.preset.empty() ? (a.regime.empty() ? "default" : "regime") : a.preset);
+  if (a.preset.empty() && a.regime.empty()) {
     spec.preset = "custom";
     spec.stability.enabled = false;
   }
+  if (!a.regime.empty()) spec.regime = rb::parse_regime_grid(a.regime, *spec.regime);
+  if (spec.regime && !a.scenes.empty())
+    throw rb::InputError("the regime study generates its scenes from its grid (--regime): give no --scenes", "scenes");
   if (!a.scenes.empty()) spec.scenes = split_names(a.scenes);
   if (!a.integrators.empty()) spec.integrators = split_names(a.integrators);
   spec.integrators = rb::with_tableau_methods(spec.integrators, !a.integrators.empty(), tableau_methods);
@@ -346,9 +352,12 @@ int main(int argc, char** argv) {
   RunArgs run;
   CLI::App* run_cmd = app.add_subcommand("run", "sweep scenes x integrators x h or tolerances into a JSON report");
   run_cmd->add_option("--preset", run.preset,
-                      "quick (CI), default (the main job) or full (a study); without it, the default preset's "
-                      "sweep without its stability study");
+                      "quick (CI), default (the main job), full (a study) or regime (the regime map over "
+                      "generated scenes); without it, the default preset's sweep without its stability study");
   run_cmd->add_option("--scenes", run.scenes, "comma-separated shipped scene names or JSON paths");
+  run_cmd->add_option("--regime", run.regime,
+                      "the regime study's grid: default, full, or axes inertia=1,2,3;spin=0.1,5,50;"
+                      "roughness=0,0.3;t_end=1,10 (those not given: the regime preset's)");
   run_cmd->add_option("--integrators", run.integrators, "comma-separated registry names");
   run_cmd->add_option("--h", run.hs, "step sizes, e.g. 0.1,0.05 or 2^-3..2^-8");
   run_cmd->add_option("--tol", run.tols, "tolerances (rtol = atol) of adaptive methods, e.g. 1e-4,1e-8");

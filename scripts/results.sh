@@ -9,6 +9,8 @@
 #                on homogeneous scenes and where R feeds back (5 repeats)
 #   exp-products.md  commutator-free and Crouch-Grossman against RKMK and the
 #                libraries (5 repeats)
+#   regime.md    rollbench run --preset regime: the regime map over its default
+#                grid of generated scenes (docs/usage.md, "The regime study")
 # Names as arguments run only those: scripts/results.sh headline
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -47,5 +49,9 @@ sweep exp-products "Results: exponentials only (commutator-free, Crouch-Grossman
   --integrators cf4,cg3,cg4a,cf4-reversed,cg3-reversed,cg4a-reversed,rkmk4,rkmk4-cayley,rkmk5,rk4,odeint-rk4,odeint-dopri5-adaptive,odeint-fehlberg78-adaptive,gsl-rk8pd-adaptive,rkmk-dp54-adaptive \
   --h 2^0..2^-10 --tol 1e-3,1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10,1e-11 --repeats 5 --jobs 2 --cache .cache/references
 
+sweep regime "Results: the regime map" \
+  "$bin/rollbench" run --preset regime --cache .cache/references
+
 if wanted default; then /usr/bin/python3 analysis/plot.py "$out/default.json" --out "$out/plots"; fi
-echo "pages in docs/results/; plots of the default preset: $out/plots/"
+if wanted regime; then /usr/bin/python3 analysis/plot.py "$out/regime.json" --out "$out/regime-plots"; fi
+echo "pages in docs/results/; plots of the default preset: $out/plots/, of the regime map: $out/regime-plots/"

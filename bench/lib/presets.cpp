@@ -67,8 +67,19 @@ SweepSpec preset(const std::string& name) {
     s.stability.scenes = {"bowl-3d", "bumpy-long", "chaplygin-bumpy-long"};
     s.stability.integrators = {"euler", "exp-euler", "heun", "rkmk2", "rk4", "rkmk4", "odeint-rk4", "gsl-rk4"};
     s.stability.drift_t_end = 10000.0;
+  } else if (name == "regime") {
+    // the regime map (docs/usage.md, "The regime study"): generated scenes,
+    // flat and Lie methods at each of orders 4 (two a side), 5 and 8, steps
+    // and tolerances fine enough to read each at 1e-4, 1e-6 and 1e-9
+    s.regime = default_regime_grid();
+    s.integrators = {"rk4", "rk4-projected", "rkmk4", "cg4a", "odeint-dopri5-adaptive", "rkmk-dp54-adaptive",
+                     "odeint-fehlberg78-adaptive", "rkmk-f78-adaptive"};
+    s.hs = powers_of_two(1, 10);
+    s.tols = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
+    s.repeats = 3;
+    s.repeat_budget_s = 0.3;
   } else {
-    throw InputError("unknown preset '" + name + "' (quick, default or full)", "preset");
+    throw InputError("unknown preset '" + name + "' (quick, default, full or regime)", "preset");
   }
   return s;
 }

@@ -1,9 +1,12 @@
 #pragma once
 // What a sweep runs: scenes x integrators x step sizes or tolerances, and the
 // named presets (quick for CI, default for the README's main job, full for a
-// study). All defaults of the runner live here.
+// study, regime for the regime map). All defaults of the runner live here.
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "bench/lib/regime_grid.hpp"
 
 namespace rb {
 
@@ -29,6 +32,9 @@ struct StabilitySpec {
 struct SweepSpec {
   std::string preset = "custom";
   std::vector<std::string> scenes;       // shipped names or JSON paths; empty: all shipped
+  // the regime study: scenes generated from this grid instead of scenes
+  // (bench/lib/regime_scenes.hpp)
+  std::optional<RegimeGrid> regime;
   std::vector<std::string> integrators;  // registry names; empty: all registered
   std::vector<double> hs;                // step sizes of fixed-step methods
   std::vector<double> tols;              // rtol = atol of adaptive methods

@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "bench/lib/order_fit.hpp"
+#include "bench/lib/regime_scenes.hpp"
 #include "problems/input_error.hpp"
 #include "problems/utf8.hpp"
 
@@ -311,10 +312,18 @@ json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes, c
   for (const RunRecord& r : runs) run_list.push_back(run_json(r, kind[r.scene]));
   json options = options_of(spec);
   options["shard"] = {spec.shard_index, spec.shard_count};
-  return {{"schema", kReportSchema}, {"created", utc_now()}, {"git", code_version()}, {"machine", machine()},
-          {"build", build()}, {"preset", spec.preset}, {"options", options}, {"references", references},
-          {"timed_call", timed_call(spec)}, {"runs", run_list}, {"orders", fit_orders(run_list, references)},
-          {"tolerance_fits", fit_tolerances(run_list)}, {"stability", stability_json(stability)}};
+  json report = {{"schema", kReportSchema}, {"created", utc_now()}, {"git", code_version()}, {"machine", machine()},
+                 {"build", build()}, {"preset", spec.preset}, {"options", options}, {"references", references},
+                 {"timed_call", timed_call(spec)}, {"runs", run_list}, {"orders", fit_orders(run_list, references)},
+                 {"tolerance_fits", fit_tolerances(run_list)}, {"stability", stability_json(stability)}};
+  if (spec.regime) {
+    // the grid in the options too, so that shards of two grids refuse to merge
+    report["options"]["regime"] = regime_axes_json(*spec.regime);
+    std::vector<Scene> generated;
+    for (const SweepScene& s : scenes) generated.push_back(s.scene);
+    report["regime"] = regime_json(*spec.regime, generated);
+  }
+  return report;
 }
 
 json read_report(const std::string& path) {

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "bench/lib/drift.hpp"
+#include "bench/lib/regime_scenes.hpp"
 #include "bench/lib/trajectory_csv.hpp"
 #include "integrators/driver.hpp"
 #include "integrators/registry.hpp"
@@ -176,7 +177,13 @@ std::string progress_line(const std::string& phase, std::size_t done, std::size_
 
 std::vector<SweepScene> prepare_scenes(const SweepSpec& spec, bool with_references,
                                        const std::function<void(const std::string&)>& progress) {
+  // the regime study's scenes are generated from its grid, checked as files are
+  const std::vector<Scene> generated = spec.regime ? regime_scenes(*spec.regime) : std::vector<Scene>{};
   std::vector<std::string> names = spec.scenes.empty() ? shipped_scene_names() : spec.scenes;
+  if (spec.regime) {
+    names.clear();
+    for (const Scene& g : generated) names.push_back(g.name);
+  }
   std::vector<SweepScene> out;
   const auto start = std::chrono::steady_clock::now();
   for (const std::string& name : names) {
@@ -185,7 +192,7 @@ std::vector<SweepScene> prepare_scenes(const SweepSpec& spec, bool with_referenc
                              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                              "scenes") +
                " (next: " + name + ")");
-    Scene scene = load_scene(name);
+    Scene scene = spec.regime ? generated[out.size()] : load_scene(name);
     if (spec.t_end > 0.0) scene.t_end = std::min(scene.t_end, spec.t_end);
     Problem problem = make_problem(scene);
     const double spacing = spec.dt_out > 0.0 ? spec.dt_out : spec.error_dt;

@@ -52,7 +52,7 @@ TEST(CliErrors, TrajectoryOptionsNameTheirOption) {
 
 TEST(CliErrors, RunAndMergeOptionsNameTheirOption) {
   const std::vector<CliCase> cases = {
-      {"run --preset huge --out OUT", 2, "rollbench: 'preset': unknown preset 'huge' (quick, default or full)\n"},
+      {"run --preset huge --out OUT", 2, "rollbench: 'preset': unknown preset 'huge' (quick, default, full or regime)\n"},
       {"run --h 0,1 --out OUT", 2, "rollbench: 'h': expected positive numbers separated by commas, got '0'\n"},
       {"run --tol 1e-6,abc --out OUT", 2, "rollbench: 'tol': expected positive numbers separated by commas, got 'abc'\n"},
       {"run --h 2^-3..2^-1 --out OUT", 2, "rollbench: 'h': expected a range like 2^-3..2^-8, got '2^-3..2^-1'\n"},

@@ -7,7 +7,10 @@
 #      in every accuracy field;
 #   2. a study whose shard 1 sees a broken scene: the other shards' reports
 #      stay, the merge names shard 1 as missing, and `submit.sh --only 1`
-#      completes it.
+#      completes it;
+#   3. the regime study on a small grid (4 generated scenes) in 3 shards:
+#      merged and plotted, equal to the unsharded run (compare.py sees no
+#      change but timing), with its regime-<target>.png and findings line.
 # Everything started here is stopped by its process id on exit, failure
 # included. Exit 77 (skipped) without root or without slurm-wlm and munge
 # (scripts/install-deps.sh --tests installs them).
@@ -147,5 +150,22 @@ ROLLBENCH="$rollbench" submit --dir "$tmp/study2" --only 1 --no-plot --wait || f
 "$rollbench" run "${small[@]}" --out "$tmp/whole2.json" >/dev/null 2>&1
 same_accuracy "$tmp/whole2.json" "$tmp/study2/report.json" || fail "the completed study differs from the unsharded run"
 echo "== ok: --only 1 completed the study, equal to the unsharded run"
+
+# 3. the regime study on a small grid: 3 shards merged and plotted equal the unsharded run
+regime=(--preset regime --regime "inertia=1,3;spin=5,50;roughness=0.3;t_end=0.5"
+  --integrators rk4,rkmk4,odeint-dopri5-adaptive,rkmk-dp54-adaptive --h 2^-3..2^-7 --tol 1e-4,1e-6,1e-8,1e-10
+  --repeats 1)
+"$rollbench" run "${regime[@]}" --out "$tmp/regime-whole.json" >/dev/null 2>&1 || fail "the unsharded regime run failed"
+ROLLBENCH="$rollbench" submit --dir "$tmp/study3" --shards 3 --wait -- "${regime[@]}" \
+  || fail "the sharded regime study did not complete"
+same_accuracy "$tmp/regime-whole.json" "$tmp/study3/report.json" || fail "the merged regime report differs"
+/usr/bin/python3 "$root/analysis/compare.py" "$tmp/regime-whole.json" "$tmp/study3/report.json" > "$tmp/compare.md"
+grep -q "^No change in status, error, drift or order" "$tmp/compare.md" && ! grep -q "^## Runs only in" "$tmp/compare.md" \
+  || { cat "$tmp/compare.md"; fail "compare.py sees more than timing change between the merged and unsharded reports"; }
+for target in 1e-04 1e-06 1e-09; do
+  [ -f "$tmp/study3/plots/regime-$target.png" ] || fail "the merge job drew no regime-$target.png"
+done
+grep -q '^- Regime map (4 generated scenes' "$tmp/study3/plots/summary.md" || fail "no regime line in the findings"
+echo "== ok: the regime study's 3 shards merge into the unsharded report (compare.py: no change but timing)"
 failed=0
 echo "PASS"

@@ -1,0 +1,156 @@
+"""The regime map against a hand-made report whose answers are known: every
+method's work-precision curve has errors 1e-2, 1e-4, ..., 1e-10 at costs
+c × 1, 2, 4, 8, 16, so it reaches 1e-4 at 2c, 1e-6 at 4c and 1e-9 at
+sqrt(8 × 16) c; flat methods' timed repeats are c × (1, 0.9, 1.2), Lie ones'
+c × 1, so a pair's ratio is c_flat / c_Lie with the spread [0.9, 1.2] × it."""
+import math
+import os
+import tempfile
+import unittest
+
+from analysis import findings, html, plot, regime, summary
+from analysis import markdown as md
+
+ERRORS = (1e-2, 1e-4, 1e-6, 1e-8, 1e-10)
+STEPS = (1, 2, 4, 8, 16)
+FLAT_SPREAD = (1.0, 0.9, 1.2)
+# name: declared order, on the group, adaptive
+METHODS = {"rk4": (4, False, False), "rk4-projected": (4, False, False), "rkmk4": (4, True, False),
+           "odeint-dopri5-adaptive": (5, False, True), "rkmk-dp54-adaptive": (5, True, True)}
+# per cell: {method: c}; the homogeneous cell's winner is flat, the other's a Lie method
+CELLS = {
+    "regime-i1-s5-r0-t1": (1.0, {"rk4": 1.0, "rk4-projected": 1.5, "rkmk4": 2.0, "odeint-dopri5-adaptive": 0.8,
+                                 "rkmk-dp54-adaptive": 1.6}),
+    "regime-i3-s5-r0-t1": (3.0, {"rk4": 3.0, "rk4-projected": 2.5, "rkmk4": 1.0, "odeint-dopri5-adaptive": 4.0,
+                                 "rkmk-dp54-adaptive": 2.0}),
+}
+# rkmk4 in the anisotropic cell stops short of 1e-9 (its last run is missing)
+SHORT = ("regime-i3-s5-r0-t1", "rkmk4")
+
+
+def make_runs(scene, costs):
+    runs = []
+    for name, c in costs.items():
+        order, on_group, adaptive = METHODS[name]
+        for k, (e, steps) in enumerate(zip(ERRORS, STEPS)):
+            if (scene, name) == SHORT and k == len(ERRORS) - 1:
+                continue
+            samples = [c * steps * (s if not on_group else 1.0) for s in FLAT_SPREAD]
+            runs.append({"scene": scene, "integrator": name, "family": "rkmk" if on_group else "rk",
+                         "adaptive": adaptive, "status": "ok", "declared_order": order, "on_group": on_group,
+                         "h": None if adaptive else 2.0 ** -k, "rtol": 10.0 ** -k if adaptive else None,
+                         "rhs_evals": 100 * steps,
+                         "wall_s": {"median": sorted(samples)[1], "samples": samples, "repeats": 3},
+                         "error": {"worst": e, "below_floor": []}})
+    return runs
+
+
+def make_report():
+    runs, refs, cells = [], [], []
+    for scene, (inertia, costs) in CELLS.items():
+        runs += make_runs(scene, costs)
+        refs.append({"scene": scene, "error": 1e-14, "r_feeds_back": inertia > 1,
+                     "inertia": [0.002, 0.004, 0.006] if inertia > 1 else None})
+        cells.append({"scene": scene, "inertia": inertia, "spin": 5.0, "roughness": 0.0, "t_end": 1.0})
+    return {"schema": "rollbench.report/2", "runs": runs, "references": refs,
+            "regime": {"axes": {"inertia": [1.0, 3.0], "spin": [5.0], "roughness": [0.0], "t_end": [1.0]},
+                       "cells": cells}}
+
+
+def at(target, c):
+    """The cost at which a curve of constant c reaches the target."""
+    return {1e-4: 2 * c, 1e-6: 4 * c, 1e-9: math.sqrt(8 * 16) * c}[target]
+
+
+class RegimeMap(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.report = make_report()
+        cls.results = regime.regime_results(cls.report)
+
+    def test_cheapest_method_and_the_best_same_order_pair(self):
+        homogeneous, anisotropic = CELLS
+        for target in regime.TARGETS:
+            with self.subTest(target=target):
+                r = self.results[(homogeneous, target)]
+                self.assertEqual(r["winner"][0], "odeint-dopri5-adaptive")
+                self.assertFalse(r["on_group"])
+                self.assertAlmostEqual(r["winner"][1], at(target, 0.8))
+                # order 4: the cheapest flat is rk4 (1), not rk4-projected (1.5), against rkmk4 (2)
+                by_order = {p[0]: p for p in r["pairs"]}
+                self.assertEqual(by_order[4][1:3], ("rk4", "rkmk4"))
+                self.assertAlmostEqual(by_order[4][3][0], 0.5)
+                # the headline: order 5, whose cheaper side (0.8) is the cheapest
+                order, flat, lie, ratio = r["pair"]
+                self.assertEqual((order, flat, lie), (5, "odeint-dopri5-adaptive", "rkmk-dp54-adaptive"))
+                self.assertAlmostEqual(ratio[0], 0.5)
+                self.assertAlmostEqual(ratio[1], 0.5 * 0.9)
+                self.assertAlmostEqual(ratio[2], 0.5 * 1.2)
+        for target in (1e-4, 1e-6):
+            r = self.results[(anisotropic, target)]
+            self.assertEqual(r["winner"][0], "rkmk4")
+            self.assertTrue(r["on_group"])
+            # order 4: rk4-projected (2.5) is the best flat one
+            self.assertEqual(r["pair"][:3], (4, "rk4-projected", "rkmk4"))
+            self.assertAlmostEqual(r["pair"][3][0], 2.5)
+        # at 1e-9 rkmk4 is not there: no order-4 pair, the winner and the pair are order 5's
+        r = self.results[(anisotropic, 1e-9)]
+        self.assertEqual(r["winner"][0], "rkmk-dp54-adaptive")
+        self.assertEqual([p[0] for p in r["pairs"]], [5])
+        self.assertAlmostEqual(r["pair"][3][0], 2.0)
+
+    def test_summary_section_has_a_table_per_target(self):
+        text = summary.summary_markdown(self.report)
+        for target in regime.TARGETS:
+            rows = md.parse_table(text, f"### Regime map at worst error {target:.0e}")
+            self.assertEqual([r[:4] for r in rows], [["1", "5", "0", "1"], ["3", "5", "0", "1"]])
+            self.assertTrue(rows[1][4].startswith("rkmk4 (" if target != 1e-9 else "rkmk-dp54-adaptive ("), rows[1])
+        rows = md.parse_table(text, "### Regime map at worst error 1e-06")
+        self.assertEqual(rows[1][5:], ["order 4: rk4-projected / rkmk4", "2.50 [2.25–3.00]"])
+        self.assertEqual(rows[0][5:], ["order 5: odeint-dopri5-adaptive / rkmk-dp54-adaptive", "0.50 [0.45–0.60]"])
+
+    def test_the_findings_line(self):
+        lines = findings.findings_section(self.report)
+        line = next(x for x in lines if x.startswith("- Regime map"))
+        self.assertEqual(line, "- Regime map (2 generated scenes × worst error 1e-04, 1e-06, 1e-09, figures "
+                               "regime-<target>.png): where R feeds back (inertia ratio > 1) the Lie side of the best "
+                               "same-order pair is cheaper in 3 of 3 cell × target, flat/Lie 2.00 to 2.50 (median "
+                               "2.50); on the homogeneous ball the Lie side of the best same-order pair is cheaper "
+                               "in 0 of 3 cell × target, flat/Lie 0.50 to 0.50 (median 0.50). Cheapest method most "
+                               "often (of 6 cell × target): odeint-dopri5-adaptive 3, rkmk4 2, rkmk-dp54-adaptive 1; 0 "
+                               "reached by none.")
+
+    def test_a_report_without_a_regime_section_has_none(self):
+        plain = make_report()
+        del plain["regime"]
+        self.assertEqual(regime.regime_section(plain), [])
+        self.assertEqual(regime.findings_lines(plain), [])
+        self.assertNotIn(regime.HEADING, summary.summary_markdown(plain))
+
+    def test_heat_maps_mark_the_lie_winners(self):
+        fig = regime.heat_map(self.report, 1e-6, results=self.results)
+        ax = fig.axes[0]
+        texts = sorted(t.get_text() for t in ax.texts)
+        self.assertEqual(texts, ["0.5\ndopri5 (a)", "2.5\nrkmk4"])
+        # one marker: the anisotropic cell, whose cheapest is a Lie-group method
+        self.assertEqual(len(ax.lines), 1)
+        self.assertEqual(tuple(ax.lines[0].get_xydata()[0]), (0.36, 1.32))
+
+    def test_plot_writes_the_figures_into_the_findings(self):
+        with tempfile.TemporaryDirectory() as out:
+            written = [os.path.basename(p) for p in plot.write_all(self.report, out, log=lambda _: None)]
+            for target in regime.TARGETS:
+                self.assertIn(regime.figure_name(target), written)
+            with open(os.path.join(out, "index.html"), encoding="utf-8") as f:
+                page = f.read()
+        # inside the findings, after its lines and before its tables
+        lines_end = page.index("</ul>", page.index('<h2 id="findings">'))
+        tables = page.index('<h3 id="cheapest-method-by-wall-time">')
+        for target in regime.TARGETS:
+            self.assertLess(lines_end, page.index(f'src="{regime.figure_name(target)}"'))
+            self.assertLess(page.index(f'src="{regime.figure_name(target)}"'), tables)
+        self.assertTrue(html.FINDINGS_FIGURES)
+
+
+if __name__ == "__main__":
+    unittest.main()
