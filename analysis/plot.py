@@ -6,7 +6,8 @@
                      [--rollbench PATH]
 
 Writes per scene convergence-, work-precision-, work-precision-best-,
-tolerance- and drift-<scene>.png; then stability.png, scenes.png,
+tolerance- and drift-<scene>.png; horizon-<scene>.png per scene of the
+horizon study; then stability.png, scenes.png,
 ball-deforms.png (with --ball), ns-per-step.png (with --perf), summary.md
 and index.html (every figure and the summary in one page). A figure whose
 data the report lacks is skipped with a message; the exit status is 0
@@ -24,7 +25,7 @@ if __package__ in (None, ""):
     sys.path[0] = _root
 
 from analysis import figures, figures_ball, figures_overview, figures_precision, html, landscape  # noqa: E402
-from analysis import style, summary  # noqa: E402
+from analysis import horizon, style, summary  # noqa: E402
 from analysis import report as rp  # noqa: E402
 
 DEFAULT_SCENES = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "problems", "scenes")
@@ -71,6 +72,8 @@ def build_figures(report, options=None, messages=None, log=None):
                 lambda: figures_precision.work_precision_best(report, scene, palette, metric))
         attempt(f"tolerance-{scene}.png", lambda: figures_precision.tolerance(report, scene, palette, metric))
         attempt(f"drift-{scene}.png", lambda: figures.drift(report, scene, palette))
+    for scene in horizon.scenes(report):
+        attempt(f"horizon-{scene}.png", lambda: horizon.figure(report, scene, palette))
     attempt("stability.png", lambda: figures_overview.stability(report, palette))
     attempt("scenes.png", lambda: figures_overview.scenes(report, options.scene_dir, options.trajectories,
                                                           messages, options.rollbench))

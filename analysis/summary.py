@@ -1,11 +1,11 @@
 """summary.md: observed against declared orders with their verdicts, the
 cost to reach given accuracies, same-tableau pairs, tolerance
-proportionality, stability, and every failure."""
+proportionality, stability, long horizons and every failure."""
 import math
 
 import re
 
-from analysis import costs, findings, pairs
+from analysis import costs, findings, horizon, pairs
 from analysis import markdown as md
 from analysis import report as rp
 
@@ -203,7 +203,7 @@ def summary_markdown(report, metric=rp.DEFAULT_METRIC):
     top = ["# rollbench summary", ""] + findings.findings_section(report, metric)
     body = (header_section(report, metric) + orders_section(report) + costs.cost_section(report, metric)
             + pairs.pairs_section(report, metric) + tolerance_section(report) + stability_section(report)
-            + failures_section(report))
+            + horizon.section(report) + failures_section(report))
     provenance = ["## Provenance", ""] + body[:body.index("")] + [f"- run statuses: {failure_counts(report)}", ""]
     body = provenance + body[body.index("") + 1:]
     lines = top + contents(body) + body
