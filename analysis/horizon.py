@@ -130,9 +130,11 @@ def section(report):
         return lines + ["The report has no horizon study (`rollbench run --horizon-steps N`, or the default and "
                         "full presets).", ""]
     fit = fit_of(entries[0], "energy_error")
+    t_from, t_to = rp.num(fit.get("t_from")), rp.num(fit.get("t_to"))
+    decades = f"{math.log10(t_to / t_from):g}" if t_from > 0 and t_to > t_from else "—"
     lines += ["Growth of the energy error and of the rotation defect ‖RᵀR − I‖_F over long fixed-step runs, each "
               "as its largest so far: the exponent p of err ≈ C tᵖ by least squares on log-log over "
-              f"t = {md.fmt(rp.num(fit.get('t_from')))} – {md.fmt(rp.num(fit.get('t_to')))} s (the last "
+              f"t = {md.fmt(t_from)} – {md.fmt(t_to)} s (the last {decades} "
               "decades of the run), ± its 95 % interval, and the slopes over the first and second half of that "
               "window (early → late; where they differ by more than the interval, the growth law is still "
               "changing). p ≈ 0: bounded, 1: a steady drift, 2: a drift that feeds on itself, ½: a random walk. "
@@ -167,7 +169,8 @@ def finding_lines(report):
         entries = runs(report, scene)
         first = entries[0]
         done = [r for r in entries if r.get("status", "ok") == "ok"]
-        energy = sorted((rp.num(fit_of(r, "energy_error").get("p")), r["integrator"]) for r in done)
+        energy = sorted((rp.num(fit_of(r, "energy_error").get("p")), r["integrator"]
+                         + (", rounding" if fit_of(r, "energy_error").get("at_rounding") else "")) for r in done)
         energy = [(p, n) for p, n in energy if math.isfinite(p)]
         growing = [(r["integrator"], rp.num(fit_of(r, "rotation_defect").get("p"))) for r in done
                    if not fit_of(r, "rotation_defect").get("at_rounding")

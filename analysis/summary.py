@@ -150,6 +150,10 @@ def failures_section(report):
         if d.get("status", "ok") != "ok":
             rows.append([d["scene"], d["integrator"] + " (drift run)", f"h={rp.num(d.get('h')):.6g}",
                          d["status"], md.fmt(rp.num(d.get("stop_time"))), d.get("message") or ""])
+    for d in horizon.runs(report):
+        if d.get("status", "ok") != "ok":
+            rows.append([d["scene"], d["integrator"] + " (horizon run)", f"h={rp.num(d.get('h')):.6g}",
+                         d["status"], md.fmt(rp.num(d.get("stop_time"))), d.get("message") or ""])
     if not rows:
         return lines + ["No run failed.", ""]
     lines += md.table(["scene", "integrator", "setting", "status", "stopped at t", "message"], rows)

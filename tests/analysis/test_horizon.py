@@ -134,6 +134,10 @@ class HorizonFromAHandMadeReport(unittest.TestCase):
         self.assertEqual(euler[3], "domain at t = 12")
         self.assertEqual(euler[5], "—")
         self.assertIn(f"- [Long horizons](#{summary.slug('Long horizons')})", self.markdown)
+        self.assertIn("over t = 0.781 – 78.1 s (the last 2 decades of the run)", self.markdown)
+        failures = md.parse_table(self.markdown, "## Failures")
+        self.assertIn(["bumpy-long", "euler (horizon run)", "h=0.0078125", "domain", "12", "left the domain"],
+                      failures)
 
     def test_findings_say_who_grows_who_stays_at_rounding_and_who_stopped(self):
         lines = [line for line in self.markdown.splitlines() if line.startswith("- Long horizon on ")]
