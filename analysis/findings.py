@@ -5,7 +5,7 @@ flat/Lie pair the flat/Lie time ratio with its spread over the timed
 repeats; then what the order study could and could not decide."""
 import math
 
-from analysis import costs, pairs, regime
+from analysis import costs, horizon, pairs, regime
 from analysis import markdown as md
 from analysis import report as rp
 
@@ -126,7 +126,7 @@ def findings_section(report, metric=rp.DEFAULT_METRIC):
                          f"(median {values[len(values) // 2]:.2f}).")
     if not summary:
         lines.append("- No same-tableau flat/Lie pair reached a target in this report.")
-    lines += regime.findings_lines(report, metric) + order_lines(report) + [""]
+    lines += regime.findings_lines(report, metric) + order_lines(report) + horizon.finding_lines(report) + [""]
     lines += ["### Cheapest method by wall time", ""]
     lines += md.table(["scene", "kind"] + [f"{metric} error {t:.0e}" for t in costs.TARGETS], rows) + [""]
     if pair_rows:

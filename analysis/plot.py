@@ -7,8 +7,8 @@
 
 Writes per scene convergence-, work-precision-, work-precision-best-,
 tolerance- and drift-<scene>.png (for a regime study only with
---scene-figures) and regime-<target>.png (analysis/regime.py); then
-stability.png, scenes.png,
+--scene-figures), regime-<target>.png (analysis/regime.py) and
+horizon-<scene>.png per scene of the horizon study; then stability.png, scenes.png,
 ball-deforms.png (with --ball), ns-per-step.png (with --perf), summary.md
 and index.html (every figure and the summary in one page). A figure whose
 data the report lacks is skipped with a message; the exit status is 0
@@ -26,7 +26,7 @@ if __package__ in (None, ""):
     sys.path[0] = _root
 
 from analysis import figures, figures_ball, figures_overview, figures_precision, html, landscape  # noqa: E402
-from analysis import regime, style, summary  # noqa: E402
+from analysis import horizon, regime, style, summary  # noqa: E402
 from analysis import report as rp  # noqa: E402
 
 DEFAULT_SCENES = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "problems", "scenes")
@@ -85,6 +85,8 @@ def build_figures(report, options=None, messages=None, log=None):
         results = regime.regime_results(report, metric)
         for target in regime.TARGETS:
             attempt(regime.figure_name(target), lambda: regime.heat_map(report, target, metric, results))
+    for scene in horizon.scenes(report):
+        attempt(f"horizon-{scene}.png", lambda: horizon.figure(report, scene, palette))
     attempt("stability.png", lambda: figures_overview.stability(report, palette))
     if per_scene:
         attempt("scenes.png", lambda: figures_overview.scenes(report, options.scene_dir, options.trajectories,

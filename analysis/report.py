@@ -153,7 +153,7 @@ def integrators(entries):
 def families(report):
     """{integrator: family} over every section."""
     out = {}
-    for entry in runs(report) + drift_runs(report) + stable_steps(report):
+    for entry in runs(report) + drift_runs(report) + stable_steps(report) + section_entries(report, "horizon.runs"):
         out.setdefault(entry["integrator"], entry.get("family"))
     return out
 

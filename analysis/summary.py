@@ -1,11 +1,11 @@
 """summary.md: observed against declared orders with their verdicts, the
 cost to reach given accuracies, same-tableau pairs, tolerance
-proportionality, stability, and every failure."""
+proportionality, stability, long horizons and every failure."""
 import math
 
 import re
 
-from analysis import costs, findings, pairs, regime
+from analysis import costs, findings, horizon, pairs, regime
 from analysis import markdown as md
 from analysis import report as rp
 
@@ -150,6 +150,10 @@ def failures_section(report):
         if d.get("status", "ok") != "ok":
             rows.append([d["scene"], d["integrator"] + " (drift run)", f"h={rp.num(d.get('h')):.6g}",
                          d["status"], md.fmt(rp.num(d.get("stop_time"))), d.get("message") or ""])
+    for d in horizon.runs(report):
+        if d.get("status", "ok") != "ok":
+            rows.append([d["scene"], d["integrator"] + " (horizon run)", f"h={rp.num(d.get('h')):.6g}",
+                         d["status"], md.fmt(rp.num(d.get("stop_time"))), d.get("message") or ""])
     if not rows:
         return lines + ["No run failed.", ""]
     lines += md.table(["scene", "integrator", "setting", "status", "stopped at t", "message"], rows)
@@ -204,7 +208,7 @@ def summary_markdown(report, metric=rp.DEFAULT_METRIC):
     body = (header_section(report, metric) + regime.regime_section(report, metric) + orders_section(report)
             + costs.cost_section(report, metric)
             + pairs.pairs_section(report, metric) + tolerance_section(report) + stability_section(report)
-            + failures_section(report))
+            + horizon.section(report) + failures_section(report))
     provenance = ["## Provenance", ""] + body[:body.index("")] + [f"- run statuses: {failure_counts(report)}", ""]
     body = provenance + body[body.index("") + 1:]
     lines = top + contents(body) + body

@@ -166,6 +166,9 @@ struct RunArgs {
   int repeats = -1, jobs = -1;
   double dt_out = std::nan("");  // NaN: not given
   bool no_stability = false;
+  // the horizon study (bench/lib/horizon.hpp): --horizon-steps enables it
+  std::string horizon_steps, horizon_scenes, horizon_integrators;
+  bool no_horizon = false;
 };
 
 std::vector<std::string> split_names(const std::string& text) {
@@ -186,6 +189,22 @@ std::string json_text(const nlohmann::json& j) {
 
 void write_json(const nlohmann::json& j, const std::string& path) { rb::write_output_file(path, json_text(j), "out"); }
 
+// --horizon-steps N enables the study (the default preset's scenes and
+// methods unless named); every name is checked before any reference.
+void apply_horizon_options(const RunArgs& a, rb::HorizonSpec& h) {
+  const bool given = !a.horizon_steps.empty() || !a.horizon_scenes.empty() || !a.horizon_integrators.empty();
+  if (a.no_horizon && given)
+    throw rb::InputError("--no-horizon cannot go with --horizon-steps, --horizon-scenes or --horizon-integrators",
+                         "no-horizon");
+  if (a.no_horizon) h.enabled = false;
+  if (!given) return rb::check_horizon(h);
+  if (!h.enabled) h = rb::preset("default").horizon;
+  if (!a.horizon_steps.empty()) h.steps = rb::parse_horizon_steps(a.horizon_steps);
+  if (!a.horizon_scenes.empty()) h.scenes = split_names(a.horizon_scenes);
+  if (!a.horizon_integrators.empty()) h.integrators = split_names(a.horizon_integrators);
+  rb::check_horizon(h);
+}
+
 int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_methods) {
   // without --preset: the default preset's sweep, not its stability study
   // (which has its own scenes and methods, and minutes of runs)
@@ -196,6 +215,7 @@ int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_
   if (a.preset.empty() && a.regime.empty()) {
     spec.preset = "custom";
     spec.stability.enabled = false;
+    spec.horizon.enabled = false;
   }
   if (!a.regime.empty()) spec.regime = rb::parse_regime_grid(a.regime, *spec.regime);
   if (spec.regime && !a.scenes.empty())
@@ -213,6 +233,7 @@ int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_
   if (a.no_stability) spec.stability.enabled = false;
   for (const std::string& name : spec.stability.integrators)
     if (spec.stability.enabled) (void)rb::find_integrator(name);
+  apply_horizon_options(a, spec.horizon);
   if (!std::isnan(a.dt_out)) {
     if (!(a.dt_out > 0.0 && std::isfinite(a.dt_out)))
       throw rb::InputError("the output spacing must be a finite number > 0", "dt-out");
@@ -236,7 +257,8 @@ int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_
   }
   const std::vector<rb::RunRecord> runs = rb::run_sweep(spec, scenes, progress);
   const rb::StabilityResults stability = rb::run_stability(spec, progress);
-  const nlohmann::json report = rb::make_report(spec, scenes, runs, stability);
+  const rb::HorizonResults horizon = rb::run_horizon(spec, progress);
+  const nlohmann::json report = rb::make_report(spec, scenes, runs, stability, horizon);
   write_json(report, a.out);
   std::printf("%s", rb::summary_table(report).c_str());
   std::printf("report written to %s\n", a.out.c_str());
@@ -370,6 +392,14 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--shard", run.shard, "i/n: run one slice of the sweep (join with `rollbench merge`)");
   run_cmd->add_option("--cache", run.cache, "directory for cached reference solutions");
   run_cmd->add_flag("--no-stability", run.no_stability, "skip the stability study of the preset");
+  run_cmd->add_option("--horizon-steps", run.horizon_steps,
+                      "run the horizon study with this many fixed steps per run, e.g. 1e5 or 1e6 (the default "
+                      "preset's: 1e5; full: 1e6)");
+  run_cmd->add_option("--horizon-scenes", run.horizon_scenes,
+                      "the horizon study's scenes (default: bumpy-long,chaplygin-bumpy-long)");
+  run_cmd->add_option("--horizon-integrators", run.horizon_integrators,
+                      "the horizon study's fixed-step methods (comma-separated registry names)");
+  run_cmd->add_flag("--no-horizon", run.no_horizon, "skip the horizon study of the preset");
   run_cmd->add_option("--out", run.out, "the report to write")->required();
   run_cmd->add_option("--stepper", steppers, stepper_help);
   add_isolation_options(run_cmd);

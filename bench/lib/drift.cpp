@@ -13,6 +13,13 @@ Drift DriftMeter::at(const FlatState& y) const {
   return {std::abs(d.energy - start_energy_), d.rotation_defect};
 }
 
+double energy_scale(const Problem& problem) {
+  const BallParams& b = problem.model().params();
+  const Derived d = problem.model().derived(problem.y0());
+  const double potential = b.mass * b.gravity * d.centre.z();
+  return b.mass * b.gravity * b.radius + std::max(0.0, d.energy - potential);
+}
+
 Drift largest_drift(const Problem& problem, const Trajectory& output) {
   const DriftMeter meter(problem);
   Drift largest = meter.at(problem.y0());

@@ -23,6 +23,11 @@ class DriftMeter {
   double start_energy_;
 };
 
+// The scene's energy scale: m g0 r plus the kinetic energy it starts with,
+// so that a spinning start on flat ground is not judged on m g0 r alone
+// (the stability study's bound and the horizon study's rounding level).
+double energy_scale(const Problem& problem);
+
 // The largest of each over the start and every recorded output of a run
 // (a non-finite value does not raise it).
 Drift largest_drift(const Problem& problem, const Trajectory& output);

@@ -28,6 +28,21 @@ std::vector<double> step_ladder(int from, int fine_to, int coarse_to) {
   return v;
 }
 
+// The horizon study of the presets (docs/usage.md#the-horizon-study): the
+// bumpy bowl with a homogeneous ball and with an anisotropic one (the same
+// landscape and start, R feeding back or not); the best fixed-step method of
+// each family at order 4 (rk4 and odeint-rk4: one tableau, two codes) and at
+// order 1 (euler, exp-euler: flat and on the group).
+HorizonSpec horizon_study(long steps) {
+  HorizonSpec h;
+  h.enabled = true;
+  h.scenes = {"bumpy-long", "chaplygin-bumpy-long"};
+  h.integrators = {"euler", "exp-euler", "rk4", "odeint-rk4", "gsl-rk4", "rk4-projected", "rk4-quaternion",
+                   "rkmk4", "cf4", "cg4a"};
+  h.steps = steps;
+  return h;
+}
+
 }  // namespace
 
 SweepSpec preset(const std::string& name) {
@@ -57,6 +72,7 @@ SweepSpec preset(const std::string& name) {
     // bounded scenes, one where R feeds back (the Chaplygin ball)
     s.stability.scenes = {"bowl-3d", "bumpy-long", "chaplygin-bumpy-long"};
     s.stability.integrators = {"euler", "exp-euler", "rk4", "rkmk4", "odeint-rk4", "gsl-rk4"};
+    s.horizon = horizon_study(100'000);
   } else if (name == "full") {
     // a study: finer steps, more repeats, longer drift runs (10^6 steps)
     s.hs = step_ladder(0, 9, 13);
@@ -67,6 +83,10 @@ SweepSpec preset(const std::string& name) {
     s.stability.scenes = {"bowl-3d", "bumpy-long", "chaplygin-bumpy-long"};
     s.stability.integrators = {"euler", "exp-euler", "heun", "rkmk2", "rk4", "rkmk4", "odeint-rk4", "gsl-rk4"};
     s.stability.drift_t_end = 10000.0;
+    // 10^6 steps; GSL's Gauss method (implicit, R^T R is a quadratic
+    // invariant it keeps) costs about 15 s per 10^5 steps, so only here
+    s.horizon = horizon_study(1'000'000);
+    s.horizon.integrators.push_back("gsl-rk4imp");
   } else if (name == "regime") {
     // the regime map (docs/usage.md, "The regime study"): generated scenes,
     // flat and Lie methods at each of orders 4 (two a side), 5 and 8, steps

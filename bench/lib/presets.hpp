@@ -29,6 +29,21 @@ struct StabilitySpec {
   double rotation_defect_bound = 1e-2;
 };
 
+// The long-horizon study (bench/lib/horizon.hpp, docs/usage.md#the-horizon-study):
+// steps fixed steps of h on each scene, the energy error and the rotation
+// defect as their largest so far at log-spaced times, and the growth exponent
+// p of err ~ C t^p fitted over the last fit_decades decades of t.
+struct HorizonSpec {
+  bool enabled = false;
+  std::vector<std::string> scenes;       // one homogeneous, one where R feeds back
+  std::vector<std::string> integrators;  // fixed-step methods
+  double h = 1.0 / 128.0;                // a power of two: every sample time n h is exact
+  long steps = 100'000;
+  int samples_per_decade = 8;            // log-spaced sample times (in steps)
+  double fit_decades = 2.0;              // fit window: t_end 10^-fit_decades .. t_end
+  long dense_outputs = 20'000;           // states measured between samples for the largest-so-far
+};
+
 struct SweepSpec {
   std::string preset = "custom";
   std::vector<std::string> scenes;       // shipped names or JSON paths; empty: all shipped
@@ -55,6 +70,7 @@ struct SweepSpec {
   // pid; RunOptions::controller); empty: each method's own
   std::string controller;
   StabilitySpec stability;
+  HorizonSpec horizon;
   std::string cache_dir;                 // reference cache; empty: none
 };
 

@@ -95,7 +95,8 @@ json options_of(const SweepSpec& s) {
            {{"enabled", st.enabled}, {"scenes", st.scenes}, {"integrators", st.integrators}, {"drift_h", st.drift_h},
             {"drift_t_end", st.drift_t_end}, {"search_h_max", st.search_h_max}, {"search_h_min", st.search_h_min},
             {"search_t_end", st.search_t_end}, {"energy_fraction", st.energy_fraction},
-            {"rotation_defect_bound", st.rotation_defect_bound}}}};
+            {"rotation_defect_bound", st.rotation_defect_bound}}},
+          {"horizon", horizon_options_json(s.horizon)}};
 }
 
 }  // namespace
@@ -297,7 +298,7 @@ json fit_orders(const json& runs, const json& references) {
 }
 
 json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes, const std::vector<RunRecord>& runs,
-                 const StabilityResults& stability) {
+                 const StabilityResults& stability, const HorizonResults& horizon) {
   json references = json::array();
   for (const SweepScene& s : scenes)
     references.push_back({{"scene", s.scene.name}, {"kind", s.reference.kind}, {"method", s.reference.method},
@@ -315,7 +316,8 @@ json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes, c
   json report = {{"schema", kReportSchema}, {"created", utc_now()}, {"git", code_version()}, {"machine", machine()},
                  {"build", build()}, {"preset", spec.preset}, {"options", options}, {"references", references},
                  {"timed_call", timed_call(spec)}, {"runs", run_list}, {"orders", fit_orders(run_list, references)},
-                 {"tolerance_fits", fit_tolerances(run_list)}, {"stability", stability_json(stability)}};
+                 {"tolerance_fits", fit_tolerances(run_list)}, {"stability", stability_json(stability)},
+                 {"horizon", horizon_json(horizon)}};
   if (spec.regime) {
     // the grid in the options too, so that shards of two grids refuse to merge
     report["options"]["regime"] = regime_axes_json(*spec.regime);
@@ -381,6 +383,7 @@ json merge_reports(const std::vector<json>& shards) {
   json base_options = merged.at("options");
   base_options.erase("shard");
   json runs = json::array(), drift = json::array(), stable = json::array(), references = json::array();
+  json horizon = json::array();
   for (const json& s : shards) {
     json options = s.at("options");
     options.erase("shard");
@@ -388,6 +391,8 @@ json merge_reports(const std::vector<json>& shards) {
     for (const json& r : s.at("runs")) runs.push_back(r);
     for (const json& d : s.at("stability").at("drift")) drift.push_back(d);
     for (const json& d : s.at("stability").at("largest_stable_h")) stable.push_back(d);
+    if (s.contains("horizon"))  // absent from reports older than the horizon study
+      for (const json& d : s.at("horizon").at("runs")) horizon.push_back(d);
     for (const json& r : s.at("references"))
       if (std::none_of(references.begin(), references.end(), [&](const json& x) { return x["scene"] == r["scene"]; }))
         references.push_back(r);
@@ -396,6 +401,7 @@ json merge_reports(const std::vector<json>& shards) {
   std::sort(runs.begin(), runs.end(), by_index);
   std::sort(drift.begin(), drift.end(), by_index);
   std::sort(stable.begin(), stable.end(), by_index);
+  std::sort(horizon.begin(), horizon.end(), by_index);
   // references in the order their scenes first appear in the sweep
   json ordered_refs = json::array();
   for (const json& r : runs)
@@ -408,6 +414,7 @@ json merge_reports(const std::vector<json>& shards) {
   merged["references"] = ordered_refs;
   merged["runs"] = runs;
   merged["stability"] = {{"drift", drift}, {"largest_stable_h", stable}};
+  merged["horizon"] = {{"runs", horizon}};
   merged["orders"] = fit_orders(runs, ordered_refs);
   merged["tolerance_fits"] = fit_tolerances(runs);
   return merged;

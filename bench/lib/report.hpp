@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/lib/horizon.hpp"
 #include "bench/lib/stability.hpp"
 #include "bench/lib/sweep.hpp"
 
@@ -15,7 +16,8 @@ inline constexpr const char* kReportSchema = "rollbench.report/2";
 
 // The report of a sweep. Orders are fitted here, from the fixed-step runs.
 nlohmann::json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes,
-                           const std::vector<RunRecord>& runs, const StabilityResults& stability);
+                           const std::vector<RunRecord>& runs, const StabilityResults& stability,
+                           const HorizonResults& horizon = HorizonResults{});
 
 // A run's "error" or "error_max" object: the components, worst, the floor
 // and what lies below it, the points measured, and the reference's kind.
@@ -38,7 +40,7 @@ nlohmann::json fit_orders(const nlohmann::json& runs, const nlohmann::json& refe
 // steps), the observed order of a method that picks its own steps.
 nlohmann::json fit_tolerances(const nlohmann::json& runs);
 
-// Joins shard reports: runs, references and stability records in sweep
+// Joins shard reports: runs, references, stability and horizon records in sweep
 // order, orders and tolerance fits refitted. Throws InputError for reports
 // of another schema or of different sweeps, and unless every shard 0..n-1 is
 // there once (the message names the missing ones).

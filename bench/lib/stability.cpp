@@ -58,20 +58,11 @@ DriftRecord drift_run(const Problem& problem, const Integrator& m, const Stabili
   return d;
 }
 
-// The scene's energy scale: m g0 r plus the kinetic energy it starts with,
-// so that a spinning start on flat ground is not judged on m g0 r alone.
-double energy_scale_of(const Problem& problem) {
-  const BallParams& b = problem.model().params();
-  const Derived d = problem.model().derived(problem.y0());
-  const double potential = b.mass * b.gravity * d.centre.z();
-  return b.mass * b.gravity * b.radius + std::max(0.0, d.energy - potential);
-}
-
 StableStepRecord stable_step_search(const SweepScene& s, const Integrator& m, const StabilitySpec& st) {
   StableStepRecord r;
   r.scene = s.scene.name;
   r.method = m.info();
-  r.energy_scale = energy_scale_of(s.problem);
+  r.energy_scale = energy_scale(s.problem);
   r.energy_fraction = st.energy_fraction;
   r.rotation_defect_bound = st.rotation_defect_bound;
   const DriftMeter meter(s.problem);

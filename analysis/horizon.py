@@ -1,0 +1,193 @@
+"""The horizon study (docs/usage.md#the-horizon-study): horizon-<scene>.png,
+the energy error and the rotation defect (the largest so far) against t on
+log-log axes with the runner's fitted growth exponent p of err ~ C t^p in
+the legend; the "Long horizons" section of summary.md and its line in the
+findings."""
+import math
+
+import numpy as np
+
+from analysis import figures
+from analysis import markdown as md
+from analysis import report as rp
+
+HEADING = "## Long horizons"
+# (key in a run and in its fit, axis label, short name)
+SERIES = (("energy_error", "energy error max$_{[0,t]}$|H − H$_0$| (J)", "energy error"),
+          ("rotation_defect", "rotation defect max$_{[0,t]}$‖R$^T$R − I‖$_F$", "rotation defect"))
+WINDOW_COLOUR = "#eeeeee"
+
+
+def runs(report, scene=None):
+    """The horizon runs of a report ([] for a report without the study), of one scene when given."""
+    return [r for r in rp.section_entries(report, "horizon.runs") if scene is None or r["scene"] == scene]
+
+
+def scenes(report):
+    return rp.unique(r["scene"] for r in runs(report))
+
+
+def fit_of(run, key):
+    return (run.get("fit") or {}).get(key) or {}
+
+
+def exponent_text(fit):
+    """'1.02 ± 0.02', '0.45 ± 0.06 (rounding)', or '—'."""
+    p, ci = rp.num(fit.get("p")), rp.num(fit.get("ci95"))
+    if not math.isfinite(p):
+        return "—"
+    text = f"{p:.2f} ± {ci:.2f}" if math.isfinite(ci) else f"{p:.2f}"
+    return text + (" (rounding)" if fit.get("at_rounding") else "")
+
+
+def halves_text(fit):
+    early, late = rp.num(fit.get("p_early")), rp.num(fit.get("p_late"))
+    if not (math.isfinite(early) and math.isfinite(late)):
+        return ""
+    return f"{early:.2f} → {late:.2f}"
+
+
+def count_text(value):
+    """10000 -> '10,000'; '—' for a missing count."""
+    return f"{value:,}" if isinstance(value, int) else "—"
+
+
+def kind(run):
+    return "R feeds back" if run.get("r_feeds_back") else "homogeneous"
+
+
+def _legend_label(run, key):
+    status = run.get("status", "ok")
+    if status != "ok":
+        return f"{run['integrator']}: {status} at t = {rp.num(run.get('stop_time')):.3g}"
+    return f"{run['integrator']}: p = {exponent_text(fit_of(run, key))}"
+
+
+def _panel(ax, entries, key, label, short, palette):
+    window = None
+    for r in entries:
+        t, y = figures.positive(r.get("t") or [], r.get(key) or [])
+        style = palette.style(r["integrator"])
+        ax.plot(t, y, label=_legend_label(r, key), markersize=3, linewidth=1.2, markevery=max(1, t.size // 8),
+                **style)
+        if r.get("status", "ok") != "ok" and t.size:
+            ax.plot(t[-1], y[-1], marker="x", color="black", markersize=8, label="_stop")
+        fit = fit_of(r, key)
+        p, c = rp.num(fit.get("p")), rp.num(fit.get("log10_c"))
+        t_from, t_to = rp.num(fit.get("t_from")), rp.num(fit.get("t_to"))
+        if math.isfinite(t_from) and math.isfinite(t_to) and t_from > 0:
+            window = (t_from, t_to)
+        if math.isfinite(p) and math.isfinite(c) and window:
+            # the fitted line over its window: thick and faint, under the data
+            tt = np.geomspace(t_from, t_to, 20)
+            ax.plot(tt, 10.0 ** c * tt ** p, color=style["color"], linewidth=4, alpha=0.3, label="_fit",
+                    zorder=1)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    if not figures.empty_log_axes(ax, "no positive values recorded"):
+        lines = [line for line in ax.lines if len(line.get_ydata()) and line.get_label() != "_fit"]
+        xs = np.concatenate([line.get_xdata() for line in lines])
+        ys = np.concatenate([line.get_ydata() for line in lines])
+        ax.set_ylim(ys.min() / 3, ys.max() * 3)
+        figures.cap_top(ax, ys, "values")
+        figures.slope_guides(ax, float(np.exp(np.mean(np.log(xs)))),
+                             float(np.exp(np.median(np.log(ys[ys <= figures.BLOW_UP])))), (1, 2), var="t")
+        levels = [rp.num(fit_of(r, key).get("rounding_level")) for r in entries]
+        levels = [v for v in levels if math.isfinite(v) and v > 0]
+        if levels:
+            ax.axhline(max(levels), color="#999999", linewidth=0.8, linestyle=":", label="_rounding")
+            ax.text(0.01, max(levels), " rounding level 100 ε √n", transform=ax.get_yaxis_transform(),
+                    fontsize=7, color="#555555", va="bottom")
+    if window:
+        ax.axvspan(window[0], window[1], color=WINDOW_COLOUR, zorder=0, linewidth=0)
+    ax.set_xlabel("time t (s)")
+    ax.set_ylabel(label)
+    ax.grid(True, which="major", alpha=0.3)
+    figures.legend_right(ax, title=f"{short}: err ∝ t$^p$, p ± 95 %\nfitted over the shaded window")
+
+
+def figure(report, scene, palette):
+    """horizon-<scene>.png: energy error (top) and rotation defect (bottom) against t, log-log."""
+    entries = [r for r in runs(report, scene) if r.get("t")]
+    if not entries:
+        raise figures.NothingToPlot(f"no horizon runs for scene {scene}")
+    fig = figures.new_figure(11, 9.5)
+    axes = fig.subplots(2, 1)
+    first = entries[0]
+    for ax, (key, label, short) in zip(axes, SERIES):
+        _panel(ax, entries, key, label, short, palette)
+        ax.set_title(f"{scene} ({kind(first)}): {short} over {count_text(first.get('steps_planned'))} steps "
+                     f"of h = {rp.num(first.get('h')):g} s", fontsize=10)
+    fig.subplots_adjust(hspace=0.3)
+    return fig
+
+
+def section(report):
+    """summary.md's "Long horizons": per scene and method the fitted exponents and the errors at the end."""
+    lines = [HEADING, ""]
+    entries = runs(report)
+    if not entries:
+        return lines + ["The report has no horizon study (`rollbench run --horizon-steps N`, or the default and "
+                        "full presets).", ""]
+    fit = fit_of(entries[0], "energy_error")
+    t_from, t_to = rp.num(fit.get("t_from")), rp.num(fit.get("t_to"))
+    decades = f"{math.log10(t_to / t_from):g}" if t_from > 0 and t_to > t_from else "—"
+    lines += ["Growth of the energy error and of the rotation defect ‖RᵀR − I‖_F over long fixed-step runs, each "
+              "as its largest so far: the exponent p of err ≈ C tᵖ by least squares on log-log over "
+              f"t = {md.fmt(t_from)} – {md.fmt(t_to)} s (the last {decades} "
+              "decades of the run), ± its 95 % interval, and the slopes over the first and second half of that "
+              "window (early → late; where they differ by more than the interval, the growth law is still "
+              "changing). p ≈ 0: bounded, 1: a steady drift, 2: a drift that feeds on itself, ½: a random walk. "
+              "\"rounding\": the largest value in the window is below 100 ε √n (times the energy scale for "
+              "the energy), rounding errors and not the method. A run that stopped has no fit.", ""]
+    rows = []
+    for r in entries:
+        e, d = fit_of(r, "energy_error"), fit_of(r, "rotation_defect")
+        stopped = r.get("status", "ok") != "ok"
+        last_e = (r.get("energy_error") or [None])[-1]
+        last_d = (r.get("rotation_defect") or [None])[-1]
+        rows.append([r["scene"], kind(r), r["integrator"],
+                     r.get("status", "ok") + (f" at t = {md.fmt(rp.num(r.get('stop_time')))}" if stopped else ""),
+                     count_text(r.get("steps")),
+                     exponent_text(e), halves_text(e), md.fmt(rp.num(last_e)),
+                     exponent_text(d), halves_text(d), md.fmt(rp.num(last_d)), md.fmt(rp.num(r.get("wall_s")))])
+    lines += md.table(["scene", "kind", "integrator", "status", "steps", "energy p", "early → late",
+                       "energy error at the end (J)", "defect p", "early → late", "defect at the end",
+                       "wall s"], rows)
+    total = sum(rp.num(r.get("wall_s")) for r in entries if math.isfinite(rp.num(r.get("wall_s"))))
+    return lines + ["", f"The study took {total:.1f} s of wall time ({len(entries)} runs).", ""]
+
+
+def _names(items):
+    return ", ".join(f"{n} {p:.2f}" for n, p in items)
+
+
+def finding_lines(report):
+    """One line per scene for the findings: the energy exponents, who keeps R at rounding, who stopped."""
+    lines = []
+    for scene in scenes(report):
+        entries = runs(report, scene)
+        first = entries[0]
+        done = [r for r in entries if r.get("status", "ok") == "ok"]
+        energy = sorted((rp.num(fit_of(r, "energy_error").get("p")), r["integrator"]
+                         + (", rounding" if fit_of(r, "energy_error").get("at_rounding") else "")) for r in done)
+        energy = [(p, n) for p, n in energy if math.isfinite(p)]
+        growing = [(r["integrator"], rp.num(fit_of(r, "rotation_defect").get("p"))) for r in done
+                   if not fit_of(r, "rotation_defect").get("at_rounding")
+                   and math.isfinite(rp.num(fit_of(r, "rotation_defect").get("p")))]
+        rounding = [r["integrator"] for r in done if fit_of(r, "rotation_defect").get("at_rounding")]
+        stopped = [f"{r['integrator']} ({r.get('status')} at t = {md.fmt(rp.num(r.get('stop_time')))})"
+                   for r in entries if r.get("status", "ok") != "ok"]
+        parts = []
+        if energy:
+            parts.append(f"energy error ∝ tᵖ with p from {energy[0][0]:.2f} ({energy[0][1]}) to "
+                         f"{energy[-1][0]:.2f} ({energy[-1][1]})")
+        if growing:
+            parts.append(f"rotation defect grows for {_names(growing)}")
+        if rounding:
+            parts.append(f"stays at rounding for {', '.join(rounding)}")
+        if stopped:
+            parts.append(f"stopped: {', '.join(stopped)}")
+        lines.append(f"- Long horizon on {scene} ({kind(first)}, {count_text(first.get('steps_planned'))} steps of "
+                     f"h = {rp.num(first.get('h')):g} s): " + ("; ".join(parts) or "no run reached the end") + ".")
+    return lines

@@ -1,0 +1,239 @@
+#include "bench/lib/horizon.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "bench/lib/drift.hpp"
+#include "bench/lib/order_fit.hpp"
+#include "integrators/registry.hpp"
+#include "problems/input_error.hpp"
+#include "problems/scene.hpp"
+#include "problems/utf8.hpp"
+
+namespace rb {
+
+using json = nlohmann::json;
+
+namespace {
+
+json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+// The output step counts: the samples and every `every` steps, merged.
+std::vector<long> output_steps(const std::vector<long>& samples, long steps, long every) {
+  std::vector<long> at = samples;
+  for (long n = every; n <= steps; n += every) at.push_back(n);
+  std::sort(at.begin(), at.end());
+  at.erase(std::unique(at.begin(), at.end()), at.end());
+  return at;
+}
+
+std::string fixed(double v, const char* format) {
+  if (!std::isfinite(v)) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, format, v);
+  return text;
+}
+
+json fit_json(const GrowthFit& f) {
+  return {{"p", number(f.p)}, {"ci95", number(f.ci95)}, {"p_early", number(f.p_early)},
+          {"p_late", number(f.p_late)}, {"log10_c", number(f.log10_c)}, {"t_from", f.t_from}, {"t_to", f.t_to},
+          {"points", f.points}, {"largest", number(f.largest)}, {"rounding_level", f.rounding_level},
+          {"at_rounding", f.at_rounding}, {"why_none", f.why_none.empty() ? json(nullptr) : json(f.why_none)}};
+}
+
+}  // namespace
+
+GrowthFit fit_growth(const std::vector<double>& t, const std::vector<double>& err, double t_from, double t_to,
+                     double rounding) {
+  GrowthFit f;
+  f.t_from = t_from;
+  f.t_to = t_to;
+  f.rounding_level = rounding;
+  std::vector<double> x, y;
+  for (std::size_t i = 0; i < t.size() && i < err.size(); ++i) {
+    // the slack keeps a window edge that is a sample time itself in it
+    if (!(t[i] >= t_from * (1 - 1e-12) && t[i] <= t_to * (1 + 1e-12)) || !std::isfinite(err[i])) continue;
+    if (!(f.largest >= err[i])) f.largest = err[i];
+    if (err[i] > 0.0) x.push_back(std::log10(t[i])), y.push_back(std::log10(err[i]));
+  }
+  f.points = static_cast<int>(x.size());
+  f.at_rounding = std::isfinite(f.largest) && f.largest <= rounding;
+  if (f.points < kMinGrowthPoints) {
+    f.why_none = "only " + std::to_string(f.points) + " samples with a value > 0 in the window (at least " +
+                 std::to_string(kMinGrowthPoints) + ")";
+    return f;
+  }
+  const LineFit line = fit_line(x, y);
+  f.p = line.slope;
+  f.ci95 = line.slope_ci95;
+  f.log10_c = line.intercept;
+  // the halves of the window in log t, each with the middle sample
+  const double middle = 0.5 * (std::log10(t_from) + std::log10(t_to));
+  std::vector<double> xe, ye, xl, yl;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (x[i] <= middle + 1e-12) xe.push_back(x[i]), ye.push_back(y[i]);
+    if (x[i] >= middle - 1e-12) xl.push_back(x[i]), yl.push_back(y[i]);
+  }
+  f.p_early = fit_line(xe, ye).slope;
+  f.p_late = fit_line(xl, yl).slope;
+  if (!std::isfinite(f.p)) f.why_none = "every sample in the window is at one time";
+  return f;
+}
+
+std::vector<long> horizon_sample_steps(long steps, int per_decade) {
+  std::vector<long> n;
+  for (int k = 0;; ++k) {
+    const long v = std::lround(std::pow(10.0, static_cast<double>(k) / per_decade));
+    if (v >= steps) break;
+    if (n.empty() || v > n.back()) n.push_back(v);
+  }
+  n.push_back(steps);
+  return n;
+}
+
+double rounding_level(long steps, double scale) {
+  return 100.0 * std::numeric_limits<double>::epsilon() * std::sqrt(static_cast<double>(steps)) * scale;
+}
+
+HorizonRecord horizon_run(const Problem& problem, const Integrator& m, const HorizonSpec& spec) {
+  HorizonRecord r;
+  r.scene = problem.name();
+  r.r_feeds_back = problem.model().anisotropic();
+  r.method = m.info();
+  r.h = spec.h;
+  r.steps = spec.steps;
+  r.t_end = spec.h * static_cast<double>(spec.steps);
+  r.energy_scale = energy_scale(problem);
+  const std::vector<long> samples = horizon_sample_steps(spec.steps, spec.samples_per_decade);
+  const long every = std::max(1L, spec.steps / std::max(1L, spec.dense_outputs));
+  RunOptions o;
+  o.t_end = r.t_end;
+  o.h = spec.h;
+  o.max_steps = 2 * spec.steps + 10;
+  // every output a whole number of steps, so that no step is shortened to land
+  for (const long n : output_steps(samples, spec.steps, every)) o.output_times.push_back(spec.h * n);
+  const auto start = std::chrono::steady_clock::now();
+  RunResult run;
+  try {
+    run = m.integrate(problem, o);
+  } catch (const std::exception& e) {
+    run.status = Status::error;
+    run.message = e.what();
+  }
+  r.status = run.status;
+  r.message = run.message;
+  r.stop_time = run.stop_time;
+  r.cost = run.cost;
+  const DriftMeter meter(problem);
+  double energy = 0.0, defect = meter.at(problem.y0()).rotation_defect;
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < run.output.t.size(); ++i) {
+    const Drift d = meter.at(run.output.y[i]);
+    // a non-finite value does not lower the largest so far (NaN fails >)
+    if (d.energy > energy) energy = d.energy;
+    if (d.rotation_defect > defect) defect = d.rotation_defect;
+    const long n = std::lround(run.output.t[i] / spec.h);
+    while (next < samples.size() && samples[next] < n) ++next;
+    if (next < samples.size() && samples[next] == n) {
+      r.t.push_back(run.output.t[i]);
+      r.energy_error.push_back(energy);
+      r.rotation_defect.push_back(defect);
+    }
+  }
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double t_from = r.t_end * std::pow(10.0, -spec.fit_decades);
+  r.energy_fit = fit_growth(r.t, r.energy_error, t_from, r.t_end, rounding_level(spec.steps, r.energy_scale));
+  r.defect_fit = fit_growth(r.t, r.rotation_defect, t_from, r.t_end, rounding_level(spec.steps, 1.0));
+  if (r.status != Status::ok) {
+    // a run that stopped has no growth law to its end: its samples stay, no fit
+    for (GrowthFit* f : {&r.energy_fit, &r.defect_fit}) {
+      const double rounding = f->rounding_level;
+      *f = GrowthFit{};
+      f->t_from = t_from;
+      f->t_to = r.t_end;
+      f->rounding_level = rounding;
+      f->why_none = "the run stopped at t = " + fixed(r.stop_time, "%.6g") + " (" + std::string(status_name(r.status)) + ")";
+    }
+  }
+  return r;
+}
+
+void check_horizon(const HorizonSpec& spec) {
+  if (!spec.enabled) return;
+  if (!(spec.steps >= 1000 && spec.steps <= 100'000'000))
+    throw InputError("expected a whole number of steps from 1000 to 100000000, got " + std::to_string(spec.steps),
+                     "horizon-steps");
+  if (!(spec.h > 0.0 && std::isfinite(spec.h))) throw InputError("the step must be a finite number > 0", "horizon-h");
+  if (spec.samples_per_decade < 1 || !(spec.fit_decades > 0.0) || spec.dense_outputs < 1)
+    throw InputError("samples per decade, fit decades and dense outputs must be > 0", "horizon");
+  if (spec.scenes.empty()) throw InputError("the horizon study needs at least one scene", "horizon-scenes");
+  if (spec.integrators.empty())
+    throw InputError("the horizon study needs at least one integrator", "horizon-integrators");
+  for (const std::string& name : spec.integrators)
+    if (find_integrator(name).adaptive())
+      throw InputError("'" + name + "' is adaptive: the horizon study takes fixed steps", "horizon-integrators");
+  for (const std::string& scene : spec.scenes) (void)load_scene(scene);
+}
+
+long parse_horizon_steps(const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !(v >= 1000.0 && v <= 1e8) || v != std::floor(v))
+    throw InputError("expected a whole number of steps from 1000 to 1e8 (e.g. 100000 or 1e6), got '" +
+                         valid_utf8(text) + "'", "horizon-steps");
+  return static_cast<long>(v);
+}
+
+HorizonResults run_horizon(const SweepSpec& spec, const std::function<void(const std::string&)>& progress) {
+  HorizonResults out;
+  const HorizonSpec& hs = spec.horizon;
+  if (!hs.enabled) return out;
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t total = hs.scenes.size() * hs.integrators.size();
+  std::size_t index = 0;
+  for (const std::string& scene : hs.scenes) {
+    const Problem problem = make_problem(load_scene(scene));
+    for (const std::string& name : hs.integrators) {
+      if (static_cast<int>(index % static_cast<std::size_t>(spec.shard_count)) == spec.shard_index) {
+        HorizonRecord r = horizon_run(problem, find_integrator(name), hs);
+        r.index = index;
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        progress("horizon: " + name + " on " + r.scene + ": " + std::string(status_name(r.status)) + ", energy p = " +
+                 fixed(r.energy_fit.p, "%.2f") + ", rotation defect p = " + fixed(r.defect_fit.p, "%.2f") +
+                 (r.defect_fit.at_rounding ? " (rounding)" : "") + ", " + fixed(r.wall_s, "%.2f") + " s (" +
+                 progress_line("horizon", index + 1, total, elapsed) + ")");
+        out.runs.push_back(std::move(r));
+      }
+      ++index;
+    }
+  }
+  return out;
+}
+
+json horizon_json(const HorizonResults& results) {
+  json runs = json::array();
+  for (const HorizonRecord& r : results.runs)
+    runs.push_back({{"index", r.index}, {"scene", r.scene}, {"r_feeds_back", r.r_feeds_back},
+                    {"integrator", r.method.name}, {"family", r.method.family},
+                    {"declared_order", r.method.declared_order}, {"on_group", r.method.on_group}, {"h", r.h},
+                    {"steps_planned", r.steps}, {"t_end", r.t_end}, {"status", std::string(status_name(r.status))},
+                    {"message", r.message}, {"stop_time", r.stop_time}, {"steps", r.cost.steps},
+                    {"rhs_evals", r.cost.rhs_evals}, {"exp_evals", r.cost.exp_evals}, {"wall_s", r.wall_s},
+                    {"energy_scale", r.energy_scale}, {"t", r.t}, {"energy_error", r.energy_error},
+                    {"rotation_defect", r.rotation_defect},
+                    {"fit", {{"energy_error", fit_json(r.energy_fit)}, {"rotation_defect", fit_json(r.defect_fit)}}}});
+  return {{"runs", runs}};
+}
+
+json horizon_options_json(const HorizonSpec& s) {
+  std::vector<std::string> scenes;
+  for (const std::string& scene : s.scenes) scenes.push_back(valid_utf8(scene));
+  return {{"enabled", s.enabled}, {"scenes", scenes}, {"integrators", s.integrators}, {"h", s.h},
+          {"steps", s.steps}, {"samples_per_decade", s.samples_per_decade}, {"fit_decades", s.fit_decades},
+          {"dense_outputs", s.dense_outputs}};
+}
+
+}  // namespace rb

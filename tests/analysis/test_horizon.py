@@ -1,0 +1,163 @@
+"""The horizon study's figure, summary section and findings line from a
+hand-made report: power laws with known exponents (the runner's fits
+written beside them), a method at rounding level and one that stopped."""
+import math
+import os
+import tempfile
+import unittest
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.image as mpimg  # noqa: E402
+import numpy as np  # noqa: E402
+
+from analysis import horizon, plot, style, summary  # noqa: E402
+from analysis import markdown as md  # noqa: E402
+from analysis import report as rp  # noqa: E402
+from tests.analysis import synthetic as syn  # noqa: E402
+
+H = 2.0 ** -7
+STEPS = 10000
+T = [H * n for n in (1, 3, 10, 32, 100, 316, 1000, 3162, 10000)]
+T_FROM = T[-1] / 100
+
+
+def fit(p, c, at_rounding=False, rounding=1e-11):
+    return {"p": p, "ci95": 0.01, "p_early": p - 0.05, "p_late": p + 0.05, "log10_c": math.log10(c),
+            "t_from": T_FROM, "t_to": T[-1], "points": 5, "largest": c * T[-1] ** p, "rounding_level": rounding,
+            "at_rounding": at_rounding, "why_none": None}
+
+
+def no_fit(why):
+    return {"p": None, "ci95": None, "p_early": None, "p_late": None, "log10_c": None, "t_from": T_FROM,
+            "t_to": T[-1], "points": 0, "largest": None, "rounding_level": 1e-11, "at_rounding": False,
+            "why_none": why}
+
+
+def horizon_run(index, scene, name, family, energy, defect, status="ok", stop=None):
+    """energy, defect: (p, C) of C t^p, or None for a run that stopped."""
+    t = T if stop is None else [x for x in T if x <= stop]
+    feeds_back = scene.startswith("chaplygin")
+    run = {"index": index, "scene": scene, "r_feeds_back": feeds_back, "integrator": name, "family": family,
+           "declared_order": 4, "on_group": family != "rk", "h": H, "steps_planned": STEPS, "t_end": T[-1],
+           "status": status, "message": "" if status == "ok" else "left the domain",
+           "stop_time": T[-1] if stop is None else stop, "steps": STEPS if stop is None else int(stop / H),
+           "rhs_evals": 4 * STEPS, "exp_evals": 0, "wall_s": 0.25, "energy_scale": 1.2, "t": t}
+    for key, law in (("energy_error", energy), ("rotation_defect", defect)):
+        p, c = law if law else (3.0, 1e-3)  # a stopped run's series still grows; it has no fit
+        run[key] = [c * x ** p for x in t]
+    if status == "ok":
+        run["fit"] = {"energy_error": fit(*energy), "rotation_defect": fit(*defect, at_rounding=defect[1] < 1e-13)}
+    else:
+        why = f"the run stopped at t = {stop:g} ({status})"
+        run["fit"] = {"energy_error": no_fit(why), "rotation_defect": no_fit(why)}
+    return run
+
+
+def with_horizon(report):
+    report = dict(report)
+    runs = []
+    for scene in ("bumpy-long", "chaplygin-bumpy-long"):
+        base = len(runs)
+        runs += [horizon_run(base, scene, "rk4", "rk", (1.0, 1e-9), (1.0, 1e-6)),
+                 horizon_run(base + 1, scene, "rkmk4", "rkmk", (0.5, 1e-10), (0.5, 1e-16)),
+                 horizon_run(base + 2, scene, "euler", "rk", None, None, status="domain", stop=12.0)]
+    report["horizon"] = {"runs": runs}
+    return report
+
+
+def labelled(ax):
+    return [line for line in ax.get_lines() if not line.get_label().startswith("_")]
+
+
+class HorizonFromAHandMadeReport(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.report = with_horizon(syn.make_report())
+        cls.markdown = summary.summary_markdown(cls.report)
+
+    def test_figure_has_one_line_per_method_and_the_exponents_in_the_legend(self):
+        palette = style.Palette(rp.families(self.report))
+        fig = horizon.figure(self.report, "chaplygin-bumpy-long", palette)
+        axes = fig.get_axes()
+        self.assertEqual(len(axes), 2)
+        for ax, key in zip(axes, ("energy_error", "rotation_defect")):
+            self.assertEqual(ax.get_xscale(), "log")
+            self.assertEqual(ax.get_yscale(), "log")
+            labels = [line.get_label() for line in labelled(ax)]
+            self.assertEqual(len(labels), 3, labels)
+            self.assertIn("euler: domain at t = 12", labels)
+        energy = [line.get_label() for line in labelled(axes[0])]
+        defect = [line.get_label() for line in labelled(axes[1])]
+        self.assertIn("rk4: p = 1.00 ± 0.01", energy)
+        self.assertIn("rkmk4: p = 0.50 ± 0.01", energy)
+        self.assertIn("rkmk4: p = 0.50 ± 0.01 (rounding)", defect)
+        # the fitted line is the report's C t^p over its window
+        fits = [line for line in axes[1].get_lines() if line.get_label() == "_fit"]
+        self.assertEqual(len(fits), 2)  # the stopped run has none
+        x, y = fits[0].get_xdata(), fits[0].get_ydata()
+        self.assertAlmostEqual(x[0], T_FROM)
+        self.assertAlmostEqual(x[-1], T[-1])
+        self.assertTrue(np.allclose(y, 1e-6 * x, rtol=1e-12))
+
+    def test_write_all_draws_a_figure_per_horizon_scene(self):
+        # the study alone: the sweep's figures (scenes.png runs rollbench) are other tests' business
+        report = {"schema": rp.SCHEMA, "runs": [], "references": self.report["references"],
+                  "horizon": self.report["horizon"]}
+        with tempfile.TemporaryDirectory() as out:
+            written = plot.write_all(report, out, plot.Options(scene_dir=os.devnull), log=lambda _: None)
+            for scene in ("bumpy-long", "chaplygin-bumpy-long"):
+                path = os.path.join(out, f"horizon-{scene}.png")
+                self.assertIn(path, written)
+                image = mpimg.imread(path)
+                self.assertGreater(float(np.std(image[..., :3])), 0.05)  # not blank
+            with open(os.path.join(out, "index.html"), encoding="utf-8") as f:
+                page = f.read()
+            self.assertIn('src="horizon-chaplygin-bumpy-long.png"', page)
+            self.assertIn("Long horizons", page)
+
+    def test_summary_section_lists_every_run_with_its_exponents(self):
+        rows = md.parse_table(self.markdown, horizon.HEADING)
+        self.assertEqual(len(rows), 6)
+        by = {(r[0], r[2]): r for r in rows}
+        rk4 = by[("chaplygin-bumpy-long", "rk4")]
+        self.assertEqual(rk4[1], "R feeds back")
+        self.assertEqual(rk4[3], "ok")
+        self.assertEqual(rk4[4], "10,000")
+        self.assertEqual(rk4[5], "1.00 ± 0.01")
+        self.assertEqual(rk4[6], "0.95 → 1.05")
+        self.assertAlmostEqual(md.as_number(rk4[10]), 1e-6 * T[-1], delta=1e-6 * T[-1] * 1e-2)
+        self.assertEqual(by[("bumpy-long", "rkmk4")][1], "homogeneous")
+        self.assertEqual(by[("bumpy-long", "rkmk4")][8], "0.50 ± 0.01 (rounding)")
+        euler = by[("bumpy-long", "euler")]
+        self.assertEqual(euler[3], "domain at t = 12")
+        self.assertEqual(euler[5], "—")
+        self.assertIn(f"- [Long horizons](#{summary.slug('Long horizons')})", self.markdown)
+        self.assertIn("over t = 0.781 – 78.1 s (the last 2 decades of the run)", self.markdown)
+        failures = md.parse_table(self.markdown, "## Failures")
+        self.assertIn(["bumpy-long", "euler (horizon run)", "h=0.0078125", "domain", "12", "left the domain"],
+                      failures)
+
+    def test_findings_say_who_grows_who_stays_at_rounding_and_who_stopped(self):
+        lines = [line for line in self.markdown.splitlines() if line.startswith("- Long horizon on ")]
+        self.assertEqual(len(lines), 2)
+        line = next(x for x in lines if "chaplygin-bumpy-long" in x)
+        self.assertIn("(R feeds back, 10,000 steps of h = 0.0078125 s)", line)
+        self.assertIn("energy error ∝ tᵖ with p from 0.50 (rkmk4) to 1.00 (rk4)", line)
+        self.assertIn("rotation defect grows for rk4 1.00", line)
+        self.assertIn("stays at rounding for rkmk4", line)
+        self.assertIn("stopped: euler (domain at t = 12)", line)
+        findings = self.markdown.split("## Contents")[0]
+        self.assertIn(line, findings)
+
+    def test_a_report_without_the_study(self):
+        report = syn.make_report()
+        self.assertEqual(horizon.runs(report), [])
+        self.assertIn("no horizon study", "\n".join(horizon.section(report)))
+        self.assertEqual(horizon.finding_lines(report), [])
+        self.assertEqual(horizon.scenes(report), [])  # plot.py draws horizon-<scene>.png for these only
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,220 @@
+// The horizon study (bench/lib/horizon.hpp): the growth fit recovers p of a
+// synthetic C t^p, and only over its window; a flat RK4's rotation defect
+// grows linearly where R feeds back while RKMK4's stays at rounding level
+// (on the group by construction); a failing method is a record without a
+// fit; bad options are refused with their names; the report carries the
+// study and merging shards keeps every run once.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "bench/lib/horizon.hpp"
+#include "bench/lib/presets.hpp"
+#include "integrators/registry.hpp"
+#include "problems/input_error.hpp"
+#include "problems/scene.hpp"
+#include "tests/cli_run.hpp"
+
+namespace rb {
+namespace {
+
+namespace fs = std::filesystem;
+
+// err = c t^p at 10 samples a decade over [1, 10^4]
+void power_law(double c, double p, std::vector<double>& t, std::vector<double>& err, double noise = 0.0) {
+  t.clear(), err.clear();
+  for (int k = 0; k <= 40; ++k) {
+    t.push_back(std::pow(10.0, k / 10.0));
+    err.push_back(c * std::pow(t.back(), p) * (1.0 + noise * std::sin(3.0 * k)));
+  }
+}
+
+TEST(HorizonFit, RecoversTheExponentOfAPowerLaw) {
+  std::vector<double> t, err;
+  for (const double p : {0.5, 1.0, 2.0}) {
+    power_law(3e-9, p, t, err);
+    const GrowthFit f = fit_growth(t, err, 100.0, 1e4, 1e-15);
+    EXPECT_NEAR(f.p, p, 1e-9) << p;
+    EXPECT_NEAR(f.log10_c, std::log10(3e-9), 1e-8);
+    EXPECT_NEAR(f.p_early, p, 1e-9);
+    EXPECT_NEAR(f.p_late, p, 1e-9);
+    EXPECT_LT(f.ci95, 1e-6);
+    EXPECT_EQ(f.points, 21);  // 10^2 .. 10^4 at 10 a decade, both ends in
+    EXPECT_FALSE(f.at_rounding);
+    EXPECT_TRUE(f.why_none.empty());
+  }
+  // 20 % wobble: the interval is wider and still holds p
+  power_law(1e-6, 1.0, t, err, 0.2);
+  const GrowthFit noisy = fit_growth(t, err, 100.0, 1e4, 0.0);
+  EXPECT_GT(noisy.ci95, 1e-3);
+  EXPECT_LT(std::abs(noisy.p - 1.0), noisy.ci95);
+}
+
+TEST(HorizonFit, FitsOnlyItsWindowAndSaysWhyNot) {
+  // bounded up to t = 100, quadratic after: the window [100, 10^4] sees t^2
+  std::vector<double> t, err;
+  power_law(1.0, 0.0, t, err);
+  for (std::size_t i = 0; i < t.size(); ++i) err[i] = t[i] <= 100.0 ? 1e-8 : 1e-8 * std::pow(t[i] / 100.0, 2.0);
+  EXPECT_NEAR(fit_growth(t, err, 100.0, 1e4, 0.0).p, 2.0, 1e-9);
+  EXPECT_NEAR(fit_growth(t, err, 1.0, 100.0, 0.0).p, 0.0, 1e-9);
+  // the whole range mixes both: neither, and the halves say so
+  const GrowthFit mixed = fit_growth(t, err, 1.0, 1e4, 0.0);
+  EXPECT_NEAR(mixed.p_early, 0.0, 1e-9);
+  EXPECT_NEAR(mixed.p_late, 2.0, 1e-9);
+
+  const GrowthFit few = fit_growth(t, err, 1e3, 1.5e3, 0.0);  // 1000 and 1259 only
+  EXPECT_TRUE(std::isnan(few.p));
+  EXPECT_EQ(few.points, 2);
+  EXPECT_EQ(few.why_none, "only 2 samples with a value > 0 in the window (at least 4)");
+  // zeros are no growth: at rounding, no fit
+  const GrowthFit zeros = fit_growth(t, std::vector<double>(t.size(), 0.0), 100.0, 1e4, 1e-15);
+  EXPECT_TRUE(std::isnan(zeros.p));
+  EXPECT_TRUE(zeros.at_rounding);
+  EXPECT_EQ(zeros.largest, 0.0);
+}
+
+TEST(HorizonFit, SampleStepsAreLogSpacedWholeSteps) {
+  const std::vector<long> n = horizon_sample_steps(1000, 4);
+  const std::vector<long> expected = {1, 2, 3, 6, 10, 18, 32, 56, 100, 178, 316, 562, 1000};
+  EXPECT_EQ(n, expected);
+  EXPECT_EQ(horizon_sample_steps(100000, 8).back(), 100000);
+  EXPECT_DOUBLE_EQ(rounding_level(10000, 2.0), 100.0 * 2.220446049250313e-16 * 100.0 * 2.0);
+}
+
+HorizonSpec small_study(long steps) {
+  HorizonSpec s = preset("default").horizon;
+  s.steps = steps;
+  return s;
+}
+
+TEST(Horizon, FlatRk4DefectGrowsWhileRkmk4StaysOnTheGroup) {
+  const Problem problem = make_problem(load_scene("chaplygin-bumpy-long"));
+  const HorizonSpec spec = small_study(20000);
+  const HorizonRecord flat = horizon_run(problem, find_integrator("rk4"), spec);
+  const HorizonRecord lie = horizon_run(problem, find_integrator("rkmk4"), spec);
+  for (const HorizonRecord* r : {&flat, &lie}) {
+    ASSERT_EQ(r->status, Status::ok) << r->message;
+    EXPECT_TRUE(r->r_feeds_back);
+    EXPECT_EQ(r->cost.steps, 20000);  // no step shortened to land on a sample
+    EXPECT_EQ(r->t.size(), horizon_sample_steps(20000, spec.samples_per_decade).size());
+    EXPECT_DOUBLE_EQ(r->t.back(), 20000 * spec.h);
+    // the largest so far never falls
+    for (std::size_t i = 1; i < r->t.size(); ++i) {
+      EXPECT_GE(r->energy_error[i], r->energy_error[i - 1]);
+      EXPECT_GE(r->rotation_defect[i], r->rotation_defect[i - 1]);
+    }
+  }
+  // the flat method's defect: a steady drift, far above rounding
+  EXPECT_GT(flat.defect_fit.p, 0.8);
+  EXPECT_LT(flat.defect_fit.p, 1.2);
+  EXPECT_FALSE(flat.defect_fit.at_rounding);
+  EXPECT_GT(flat.defect_fit.largest, 1e-6);
+  // the Lie method's: rounding only
+  EXPECT_TRUE(lie.defect_fit.at_rounding);
+  EXPECT_LT(lie.defect_fit.largest, 1e-12);
+  // its energy error is smaller than the flat one's, whose R leaves SO(3)
+  EXPECT_LT(lie.energy_error.back(), flat.energy_error.back());
+}
+
+TEST(Horizon, AFailingMethodIsARecordWithoutAFit) {
+  const Problem problem = make_problem(load_scene("bumpy-long"));
+  const HorizonRecord r = horizon_run(problem, find_integrator("euler"), small_study(100000));
+  EXPECT_NE(r.status, Status::ok);
+  EXPECT_LT(r.stop_time, r.t_end);
+  ASSERT_FALSE(r.t.empty());
+  EXPECT_LE(r.t.back(), r.stop_time);
+  EXPECT_TRUE(std::isnan(r.energy_fit.p));
+  EXPECT_EQ(r.defect_fit.why_none.rfind("the run stopped at t = ", 0), 0u) << r.defect_fit.why_none;
+}
+
+TEST(Horizon, BadOptionsAreRefusedWithTheirNames) {
+  EXPECT_EQ(parse_horizon_steps("1e5"), 100000);
+  EXPECT_EQ(parse_horizon_steps("250000"), 250000);
+  EXPECT_EQ(parse_horizon_steps("12.5e3"), 12500);  // a whole number, however written
+  for (const char* bad : {"12.5", "1.5e3x", "abc", "100", "2e8", "", "1e5x"}) {
+    try {
+      parse_horizon_steps(bad);
+      ADD_FAILURE() << bad;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), "horizon-steps");
+      EXPECT_EQ(e.message(), "expected a whole number of steps from 1000 to 1e8 (e.g. 100000 or 1e6), got '" +
+                                 std::string(bad) + "'");
+    }
+  }
+  HorizonSpec s = small_study(1000);
+  s.integrators = {"rk4", "rkmk-dp54-adaptive"};
+  try {
+    check_horizon(s);
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "'horizon-integrators': 'rkmk-dp54-adaptive' is adaptive: the horizon study takes "
+                           "fixed steps");
+  }
+  s = small_study(999);
+  EXPECT_THROW(check_horizon(s), InputError);
+  s = small_study(1000);
+  s.scenes = {"no-such-scene"};
+  EXPECT_THROW(check_horizon(s), InputError);
+  s.enabled = false;  // a study that does not run is not checked
+  EXPECT_NO_THROW(check_horizon(s));
+}
+
+using testing::run_rollbench;
+using testing::slurp;
+
+TEST(HorizonCli, OptionsRunTheStudyIntoTheReportAndShardsMerge) {
+  const fs::path a = testing::cli_temp_file("horizon-a.json"), b = testing::cli_temp_file("horizon-b.json"),
+                 merged = testing::cli_temp_file("horizon-merged.json");
+  const std::string common = "run --scenes plane --integrators rk4 --h 0.25 --repeats 0 --horizon-steps 2000 "
+                             "--horizon-scenes plane --horizon-integrators rk4,rkmk4,cf4 ";
+  testing::CliOutcome o = run_rollbench(common + "--shard 0/2 --out " + a.string());
+  ASSERT_EQ(o.code, 0) << o.err;
+  EXPECT_NE(o.err.find("horizon: rk4 on plane: ok"), std::string::npos) << o.err;
+  o = run_rollbench(common + "--shard 1/2 --out " + b.string());
+  ASSERT_EQ(o.code, 0) << o.err;
+  o = run_rollbench("merge " + a.string() + " " + b.string() + " --out " + merged.string());
+  ASSERT_EQ(o.code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(slurp(merged));
+  EXPECT_EQ(j.at("options").at("horizon").at("steps"), 2000);
+  const nlohmann::json& runs = j.at("horizon").at("runs");
+  ASSERT_EQ(runs.size(), 3u);
+  const char* names[] = {"rk4", "rkmk4", "cf4"};
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(runs[i].at("index"), i);
+    EXPECT_EQ(runs[i].at("integrator"), names[i]);
+    EXPECT_EQ(runs[i].at("steps"), 2000);
+    EXPECT_EQ(runs[i].at("t").size(), runs[i].at("rotation_defect").size());
+    EXPECT_TRUE(runs[i].at("fit").at("rotation_defect").contains("p"));
+  }
+}
+
+TEST(HorizonCli, BadOptionsExitWithTwo) {
+  const std::string out = " --out " + testing::cli_temp_file("horizon-bad.json").string();
+  const std::string base = "run --scenes plane --integrators rk4 --h 0.25 --repeats 0 ";
+  testing::CliOutcome o = run_rollbench(base + "--horizon-steps 12.5" + out);
+  EXPECT_EQ(o.code, 2);
+  EXPECT_EQ(o.err, "rollbench: 'horizon-steps': expected a whole number of steps from 1000 to 1e8 (e.g. 100000 or "
+                   "1e6), got '12.5'\n");
+  o = run_rollbench(base + "--horizon-steps 1e4 --horizon-integrators rk4,gsl-rkf45-adaptive" + out);
+  EXPECT_EQ(o.code, 2);
+  EXPECT_EQ(o.err, "rollbench: 'horizon-integrators': 'gsl-rkf45-adaptive' is adaptive: the horizon study takes "
+                   "fixed steps\n");
+  o = run_rollbench(base + "--no-horizon --horizon-steps 1e4" + out);
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("'no-horizon'"), std::string::npos) << o.err;
+  // without a preset or an option: no study, an empty section
+  const fs::path plain = testing::cli_temp_file("horizon-none.json");
+  o = run_rollbench(base + "--out " + plain.string());
+  ASSERT_EQ(o.code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(slurp(plain));
+  EXPECT_EQ(j.at("options").at("horizon").at("enabled"), false);
+  EXPECT_TRUE(j.at("horizon").at("runs").empty());
+  EXPECT_TRUE(preset("default").horizon.enabled);
+  EXPECT_EQ(preset("full").horizon.steps, 1'000'000);
+}
+
+}  // namespace
+}  // namespace rb
