@@ -9,27 +9,34 @@
 #      (kept in the build folder); any crash, leak, timeout, out-of-memory or
 #      sanitizer report fails;
 #   2. the whole test suite runs under the sanitizers with ctest.
-# Usage: scripts/robustness.sh [fuzz|tests] [--fuzz-seconds N]   (default: both, 60 s)
-# Environment: FUZZ_SECONDS (60; --fuzz-seconds wins), BUILD_DIR (build/robustness), JOBS (2).
+# Usage: scripts/robustness.sh [fuzz|tests] [--fuzz-seconds N] [--fuzz-seed S]   (default: both, 60 s, seed 1)
+# Environment: FUZZ_SECONDS (60), FUZZ_SEED (1; the options win), BUILD_DIR (build/robustness), JOBS (2).
+# The seed fixes libFuzzer's choices, so that a finding of CI's run is found
+# again by the same command (docs/fuzzing.md); --fuzz-seed 0 lets libFuzzer
+# pick one (printed in the log), for runs that should explore anew.
 # CI keeps 60 s a target. The long mode (docs/fuzzing.md) is the same run with
 # hours a target, e.g. `scripts/robustness.sh fuzz --fuzz-seconds 14400`; the
 # corpus grown in $BUILD_DIR/corpus carries over from run to run.
 # A g++ sanitizer build works too: cmake -B build/asan -DRB_SANITIZE=ON.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-usage() { echo "usage: $0 [fuzz|tests] [--fuzz-seconds N]" >&2; exit 2; }
+usage() { echo "usage: $0 [fuzz|tests] [--fuzz-seconds N] [--fuzz-seed S]" >&2; exit 2; }
 parts=all
 fuzz_seconds="${FUZZ_SECONDS:-60}"
+fuzz_seed="${FUZZ_SEED:-1}"
 while [ $# -gt 0 ]; do
   case "$1" in
     all | fuzz | tests) parts="$1" ;;
     --fuzz-seconds) [ $# -ge 2 ] || usage; fuzz_seconds="$2"; shift ;;
     --fuzz-seconds=*) fuzz_seconds="${1#*=}" ;;
+    --fuzz-seed) [ $# -ge 2 ] || usage; fuzz_seed="$2"; shift ;;
+    --fuzz-seed=*) fuzz_seed="${1#*=}" ;;
     *) usage ;;
   esac
   shift
 done
 case "$fuzz_seconds" in '' | *[!0-9]* | 0) echo "$0: --fuzz-seconds wants a whole number of seconds > 0, got '$fuzz_seconds'" >&2; exit 2 ;; esac
+case "$fuzz_seed" in '' | *[!0-9]*) echo "$0: --fuzz-seed wants a whole number >= 0 (0: libFuzzer picks), got '$fuzz_seed'" >&2; exit 2 ;; esac
 build="${BUILD_DIR:-build/robustness}"
 jobs="${JOBS:-2}"
 targets=(fuzz_formula fuzz_scene fuzz_run)
@@ -62,9 +69,9 @@ run_fuzzers() {
     # artifacts are this run's findings only (copy one elsewhere to keep it)
     rm -rf "$artifacts"
     mkdir -p "$corpus" "$artifacts"
-    echo "== robustness: $t for ${fuzz_seconds} s"
+    echo "== robustness: $t for ${fuzz_seconds} s, seed $fuzz_seed"
     # new inputs go to the first folder; the seeds in fuzz/corpus stay as they are
-    "$build/fuzz/$t" "$corpus" "fuzz/corpus/$t" -dict="${dict[$t]}" -max_total_time="$fuzz_seconds" \
+    "$build/fuzz/$t" "$corpus" "fuzz/corpus/$t" -dict="${dict[$t]}" -max_total_time="$fuzz_seconds" -seed="$fuzz_seed" \
       -timeout=10 -rss_limit_mb=2048 -max_len=8192 -print_final_stats=1 -artifact_prefix="$artifacts" \
       >"$log" 2>&1 || rc=$?
     local execs rate found
@@ -81,7 +88,7 @@ run_fuzzers() {
     summary+=$(printf '  %-13s %10s runs %7s runs/s  corpus %5s  exit %s' "$t" "${execs:-?}" "${rate:-?}" \
       "$(find "$corpus" -type f | wc -l)" "$rc")$'\n'
   done
-  echo "== robustness: fuzzing, ${fuzz_seconds} s a target"
+  echo "== robustness: fuzzing, ${fuzz_seconds} s a target, seed $fuzz_seed"
   printf '%s' "$summary"
   return "$failed"
 }
