@@ -71,7 +71,7 @@ def validate(data, name="report"):
     if not isinstance(entries, list) or not entries:
         raise ReportError(f"{name}: key 'error_components' is not a list of components")
     for i, entry in enumerate(entries):
-        for key in ("name", "quantity", "unit"):
+        for key in ("name", "label", "unit"):
             if not isinstance(entry, dict) or not isinstance(entry.get(key), str):
                 raise ReportError(f"{name}: error_components[{i}] has no text key '{key}'")
     return data
@@ -104,12 +104,12 @@ def metrics(report):
 
 
 def metric_label(report, metric):
-    """An axis label for a metric: what it measures and its unit ("contact point error (m)")."""
+    """An axis label for a metric: its label and unit ("contact-point error (m)")."""
     if metric == "worst":
         return WORST_LABEL
     for c in report["error_components"]:
         if c["name"] == metric:
-            return f"{c['quantity']} error ({c['unit']})"
+            return f"{c['label']} ({c['unit']})"
     raise ReportError(f"no error component '{metric}' in the report (it has {', '.join(components(report))})")
 
 

@@ -14,16 +14,16 @@ enum class ErrorScale { radius, omega_scale, one };
 
 struct ErrorComponent {
   const char* name;      // the key in a run's "error", "below_floor", an order's "observed"
-  const char* quantity;  // what it measures, for labels
+  const char* label;  // what it measures, for axes and tables (the unit follows)
   const char* unit;
   ErrorScale scale;
 };
 
 inline constexpr std::array<ErrorComponent, 4> kErrorComponents{{
-    {"contact", "contact point", "m", ErrorScale::radius},
-    {"centre", "centre", "m", ErrorScale::radius},
-    {"omega", "angular velocity", "rad/s", ErrorScale::omega_scale},
-    {"rotation", "rotation", "rad", ErrorScale::one},
+    {"contact", "contact-point error", "m", ErrorScale::radius},
+    {"centre", "centre error", "m", ErrorScale::radius},
+    {"omega", "angular-velocity error", "rad/s", ErrorScale::omega_scale},
+    {"rotation", "rotation error", "rad", ErrorScale::one},
 }};
 
 inline constexpr std::size_t kErrorComponentCount = kErrorComponents.size();

@@ -109,7 +109,7 @@ json errors_json(const RunErrors& e, const std::string& reference_kind) {
 json error_components_json() {
   json list = json::array();
   for (const ErrorComponent& c : kErrorComponents)
-    list.push_back({{"name", c.name}, {"quantity", c.quantity}, {"unit", c.unit}, {"scale", scale_name(c.scale)}});
+    list.push_back({{"name", c.name}, {"label", c.label}, {"unit", c.unit}, {"scale", scale_name(c.scale)}});
   return list;
 }
 

@@ -44,7 +44,7 @@ nlohmann::json fit_orders(const std::vector<FitRun>& runs, const ReferenceFloors
 // steps), the observed order of a method that picks its own steps.
 nlohmann::json fit_tolerances(const std::vector<FitRun>& runs);
 
-// The report's "error_components": kErrorComponents with name, quantity,
+// The report's "error_components": kErrorComponents with name, label,
 // unit and scale.
 nlohmann::json error_components_json();
 

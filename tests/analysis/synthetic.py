@@ -65,10 +65,10 @@ PLANTED_VERDICTS = {
 COMPONENT_SCALE = {"contact": 1.0, "centre": 1.1, "omega": 3.0}
 # the report's "error_components" as rollbench writes them (bench/lib/error_components.hpp)
 ERROR_COMPONENTS = [
-    {"name": "contact", "quantity": "contact point", "unit": "m", "scale": "radius"},
-    {"name": "centre", "quantity": "centre", "unit": "m", "scale": "radius"},
-    {"name": "omega", "quantity": "angular velocity", "unit": "rad/s", "scale": "omega_scale"},
-    {"name": "rotation", "quantity": "rotation", "unit": "rad", "scale": "1"},
+    {"name": "contact", "label": "contact-point error", "unit": "m", "scale": "radius"},
+    {"name": "centre", "label": "centre error", "unit": "m", "scale": "radius"},
+    {"name": "omega", "label": "angular-velocity error", "unit": "rad/s", "scale": "omega_scale"},
+    {"name": "rotation", "label": "rotation error", "unit": "rad", "scale": "1"},
 ]
 COMPONENTS = tuple(c["name"] for c in ERROR_COMPONENTS)
 # ball radius and omega scale are 1, so "worst" is the largest component

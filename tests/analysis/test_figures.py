@@ -309,7 +309,7 @@ class ReportValidation(unittest.TestCase):
         with self.assertRaisesRegex(rp.ReportError, "report: missing key 'error_components'"):
             rp.validate(report)
         report["error_components"] = [{"name": "contact", "unit": "m"}]
-        with self.assertRaisesRegex(rp.ReportError, r"error_components\[0\] has no text key 'quantity'"):
+        with self.assertRaisesRegex(rp.ReportError, r"error_components\[0\] has no text key 'label'"):
             rp.validate(report)
 
 

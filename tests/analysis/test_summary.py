@@ -249,7 +249,7 @@ class ErrorComponentsOfTheReport(unittest.TestCase):
     def test_the_error_components_come_from_the_report(self):
         report = syn.make_report()
         self.assertEqual(rp.components(report), ("contact", "centre", "omega", "rotation"))
-        self.assertEqual(rp.metric_label(report, "omega"), "angular velocity error (rad/s)")
+        self.assertEqual(rp.metric_label(report, "omega"), "angular-velocity error (rad/s)")
         # a report that lists fewer components shows only those
         report["error_components"] = [c for c in report["error_components"] if c["name"] in ("contact", "rotation")]
         self.assertEqual(rp.metrics(report), ("worst", "contact", "rotation"))

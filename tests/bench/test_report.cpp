@@ -83,10 +83,10 @@ TEST(Report, QuickPresetFollowsTheSchemaAndRoundTrips) {
 TEST(Report, TheReportListsItsErrorComponentsAndItsFitsReadThemBack) {
   const json again = json::parse(quick_report().dump());
   const json expected = json::parse(R"([
-    {"name": "contact", "quantity": "contact point", "unit": "m", "scale": "radius"},
-    {"name": "centre", "quantity": "centre", "unit": "m", "scale": "radius"},
-    {"name": "omega", "quantity": "angular velocity", "unit": "rad/s", "scale": "omega_scale"},
-    {"name": "rotation", "quantity": "rotation", "unit": "rad", "scale": "1"}])");
+    {"name": "contact", "label": "contact-point error", "unit": "m", "scale": "radius"},
+    {"name": "centre", "label": "centre error", "unit": "m", "scale": "radius"},
+    {"name": "omega", "label": "angular-velocity error", "unit": "rad/s", "scale": "omega_scale"},
+    {"name": "rotation", "label": "rotation error", "unit": "rad", "scale": "1"}])");
   ASSERT_EQ(again.at("error_components"), expected);
   for (const json& run : again["runs"])
     for (const json& c : expected) EXPECT_TRUE(run["error"].contains(c["name"])) << c["name"];
