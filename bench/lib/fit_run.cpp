@@ -1,6 +1,7 @@
 #include "bench/lib/fit_run.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "problems/input_error.hpp"
 
@@ -13,7 +14,8 @@ namespace {
 // A number as the report holds it: not finite is null, and null reads NaN.
 double as_reported(double v) { return std::isfinite(v) ? v : kNaN; }
 
-// Reads the fields of one run entry the fits need; where: "'FILE': runs[i]".
+// Reads the fields of one run entry the fits need; where names it in
+// errors: "the report 'FILE': runs[i]".
 class RunFields {
  public:
   RunFields(const json& run, std::string where) : run_(run), where_(std::move(where)) {
@@ -62,8 +64,6 @@ class RunFields {
     }
     return out;
   }
-  const json& run() const { return run_; }
-
   [[noreturn]] void refuse(const std::string& key, const std::string& problem) const {
     throw InputError(where_ + (key.empty() ? "" : "." + key) + " " + problem, "reports");
   }
