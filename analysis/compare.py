@@ -95,12 +95,12 @@ def time_change(a, b):
     return ratio, p, changed
 
 
-def compare_runs(a, b):
-    """One row: the values side by side and the list of changes (kind, text)."""
+def compare_runs(a, b, metrics=(rp.DEFAULT_METRIC,)):
+    """One row: the values side by side and the list of changes (kind, text) in the metrics given."""
     changes = []
     if a.get("status") != b.get("status"):
         changes.append(("status", f"{a.get('status')} → {b.get('status')}"))
-    for c in rp.METRICS:
+    for c in metrics:
         text = _value_change(_error_value(a, c), _error_value(b, c), VALUE_RATIO, ROUNDING["error"])
         if text:
             changes.append((f"error.{c}", text))
@@ -140,7 +140,8 @@ def compare_reports(a, b):
     """{"runs": rows, "orders": rows, "only_a": keys, "only_b": keys, "changes": [(key, kind, text)]}."""
     runs_b = {run_key(r): r for r in rp.runs(b)}
     keys_a = [run_key(r) for r in rp.runs(a)]
-    rows = [compare_runs(r, runs_b[run_key(r)]) for r in rp.runs(a) if run_key(r) in runs_b]
+    metrics = rp.unique(rp.metrics(a) + rp.metrics(b))
+    rows = [compare_runs(r, runs_b[run_key(r)], metrics) for r in rp.runs(a) if run_key(r) in runs_b]
     orders = compare_orders(a, b)
     changes = [(row["key"], kind, text) for row in rows + orders for kind, text in row["changes"]]
     return {"runs": rows, "orders": orders, "changes": changes,

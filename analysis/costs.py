@@ -87,7 +87,7 @@ def cost_rows(report, scene, metric=rp.DEFAULT_METRIC):
 
 def cost_section(report, metric=rp.DEFAULT_METRIC):
     lines = [f"## Cost to accuracy ({metric} error)", "",
-             f"Cost at which each method's {metric} error ({rp.METRIC_LABELS[metric]}) first reaches the "
+             f"Cost at which each method's {metric} error ({rp.metric_label(report, metric)}) first reaches the "
              f"target, {HOW}.", ""]
     scenes = [s for s in rp.scenes(report) if rp.runs(report, s)]
     if not scenes:

@@ -59,7 +59,7 @@ def work_precision(report, scene, palette, metric=rp.DEFAULT_METRIC):
         for name in names:
             _draw_method(ax, [r for r in runs if r["integrator"] == name], name, cost_of, metric, floor, palette)
         _finish_axes(ax, scene, metric, kind, floor, "")
-    axes[0].set_ylabel(rp.METRIC_LABELS[metric])
+    axes[0].set_ylabel(rp.metric_label(report, metric))
     targets = ", ".join(f"{t:g}" for t in costs.TARGETS)
     legend_right(axes[1], title=f"hollow markers: adaptive\ndotted: {targets} (summary.md)")
     return fig
@@ -119,7 +119,7 @@ def work_precision_best(report, scene, palette, metric=rp.DEFAULT_METRIC):
             _draw_method(ax, [r for r in runs if r["integrator"] == best], best, cost_of, metric, floor, palette,
                          label=f"{family}: {best}")
         _finish_axes(ax, scene, metric, kind, floor, "best of each family, ")
-    axes[0].set_ylabel(rp.METRIC_LABELS[metric])
+    axes[0].set_ylabel(rp.metric_label(report, metric))
     legend_right(axes[1], title="family: its method with the lowest\ncost over the family's accuracy range")
     return fig
 
@@ -152,7 +152,7 @@ def tolerance(report, scene, palette, metric=rp.DEFAULT_METRIC):
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("tolerance (rtol = atol)")
-    ax.set_ylabel(rp.METRIC_LABELS[metric])
+    ax.set_ylabel(rp.metric_label(report, metric))
     ax.grid(True, which="major", alpha=0.3)
     ax.set_title(f"{scene}: tolerance proportionality, {metric} error against tolerance", fontsize=10)
     if not empty_log_axes(ax, "no successful adaptive run"):

@@ -59,7 +59,7 @@ def _verdict_counts(report):
     """(verdicts, inconclusive, {reason: count}) over every component of every fixed-step fit."""
     total, inconclusive, reasons = 0, 0, {}
     for o in rp.orders(report):
-        for c in rp.COMPONENTS:
+        for c in rp.components(report):
             v = rp.verdict(o, c)
             if v == "—":
                 continue
@@ -83,8 +83,8 @@ def order_lines(report):
     high = {}
     for o in rp.orders(report):
         if (o.get("declared") or 0) >= 8 and feeds_back(report, o["scene"]):
-            decided = [c for c in rp.COMPONENTS if rp.verdict(o, c) in ("as declared", "lower")]
-            high.setdefault(o["integrator"], []).append(f"{o['scene']} {len(decided)}/4")
+            decided = [c for c in rp.components(report) if rp.verdict(o, c) in ("as declared", "lower")]
+            high.setdefault(o["integrator"], []).append(f"{o['scene']} {len(decided)}/{len(rp.components(report))}")
     if high:
         lines.append("- Order-8 methods where R feeds back (components with a verdict): "
                      + "; ".join(f"{n}: {', '.join(v)}" for n, v in high.items()) + ".")

@@ -138,8 +138,9 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("report", help=f"a {rp.SCHEMA} JSON file")
     parser.add_argument("--out", required=True, help="folder for the figures, summary.md and index.html")
-    parser.add_argument("--metric", choices=rp.METRICS, default=rp.DEFAULT_METRIC,
-                        help="accuracy axis of the work-precision figures and cost tables (default: %(default)s)")
+    parser.add_argument("--metric", default=rp.DEFAULT_METRIC,
+                        help="accuracy axis of the work-precision figures and cost tables: worst or one of the "
+                             "report's error_components (default: %(default)s)")
     parser.add_argument("--errors", choices=sorted(rp.ERROR_KEYS), default="end",
                         help="errors at t_end (end) or the largest over the timed run's steps (max) "
                              "(default: %(default)s)")
@@ -157,6 +158,10 @@ def main(argv=None):
         report = rp.load(args.report)
     except rp.ReportError as e:
         print(f"error: {e}", file=sys.stderr)
+        return 2
+    if args.metric not in rp.metrics(report):
+        print(f"error: --metric {args.metric!r} is none of {', '.join(rp.metrics(report))} (worst and the report's "
+              "error_components)", file=sys.stderr)
         return 2
     perf = None
     if args.perf:

@@ -12,18 +12,11 @@ import math
 import numpy as np
 
 SCHEMA = "rollbench.report/2"
-COMPONENTS = ("contact", "centre", "omega", "rotation")
-# accuracy axes a figure or table can use; "worst" (the largest of the
-# components, each made dimensionless) is the only one that sees R everywhere
-METRICS = ("worst",) + COMPONENTS
+# "worst" (the largest of the error components, each made dimensionless) is
+# the only accuracy axis that sees R everywhere; the components themselves
+# come from the report (components())
 DEFAULT_METRIC = "worst"
-METRIC_LABELS = {
-    "worst": "worst error (ball radii or rad)",
-    "contact": "contact-point error (m)",
-    "centre": "centre error (m)",
-    "omega": "angular-velocity error (rad/s)",
-    "rotation": "rotation error (rad)",
-}
+WORST_LABEL = "worst error (ball radii or rad)"
 
 # keys without which an entry of a section means nothing
 REQUIRED = {
@@ -71,6 +64,16 @@ def validate(data, name="report"):
     for i, run in enumerate(data.get("runs") or []):
         if not run["adaptive"] and run.get("h") is None and run["status"] == "ok":
             raise ReportError(f"{name}: runs[{i}] is a fixed-step run with no key 'h'")
+    if "error_components" not in data:
+        raise ReportError(f"{name}: missing key 'error_components' (the components of a run's error; "
+                          "re-run rollbench to write a current report)")
+    entries = data["error_components"]
+    if not isinstance(entries, list) or not entries:
+        raise ReportError(f"{name}: key 'error_components' is not a list of components")
+    for i, entry in enumerate(entries):
+        for key in ("name", "label", "unit"):
+            if not isinstance(entry, dict) or not isinstance(entry.get(key), str):
+                raise ReportError(f"{name}: error_components[{i}] has no text key '{key}'")
     return data
 
 
@@ -88,6 +91,26 @@ def section_entries(data, section, name="report"):
     if not isinstance(node, list):
         raise ReportError(f"{name}: key '{section}' is not a list")
     return node
+
+
+def components(report):
+    """The names of the error components, in the report's order (its "error_components")."""
+    return tuple(c["name"] for c in report["error_components"])
+
+
+def metrics(report):
+    """The accuracy axes a figure or table can use: "worst", then every component."""
+    return (DEFAULT_METRIC,) + components(report)
+
+
+def metric_label(report, metric):
+    """An axis label for a metric: its label and unit ("contact-point error (m)")."""
+    if metric == "worst":
+        return WORST_LABEL
+    for c in report["error_components"]:
+        if c["name"] == metric:
+            return f"{c['label']} ({c['unit']})"
+    raise ReportError(f"no error component '{metric}' in the report (it has {', '.join(components(report))})")
 
 
 def num(value):

@@ -28,9 +28,9 @@ def _order_cell(order, component):
     return f"{text} ({rp.verdict(order, component)})"
 
 
-def overall_verdict(order):
+def overall_verdict(order, components):
     """'lower' if any component is lower, else 'inconclusive' if any is (or has none), else 'as declared'."""
-    found = [rp.verdict(order, c) for c in rp.COMPONENTS if math.isfinite(rp.observed(order, c))]
+    found = [rp.verdict(order, c) for c in components if math.isfinite(rp.observed(order, c))]
     if not found:
         return "—"
     if "lower" in found:
@@ -51,6 +51,7 @@ def orders_section(report):
               "or above it, \"lower\" when below, \"inconclusive\" when it is wider than ±0.3 or rests on fewer "
               "than 4 points (an inconclusive fit is no pass). Overall: lower if any component is lower, as "
               "declared only if all are.", ""]
+    components = rp.components(report)
     rows = []
     for o in entries:
         declared, declared_rot = o.get("declared"), o.get("declared_rotation", o.get("declared"))
@@ -59,9 +60,9 @@ def orders_section(report):
                    if math.isfinite(rp.num(fit.get("h_min"))) else "—")
         rows.append([o["scene"], o["integrator"], declared if declared is not None else "—",
                      declared_rot if declared_rot is not None else "—"]
-                    + [_order_cell(o, c) for c in rp.COMPONENTS] + [h_range, overall_verdict(o)])
-    lines += md.table(["scene", "integrator", "declared", "declared (R)", "contact", "centre", "omega", "rotation",
-                       "fit range h (contact)", "verdict"], rows)
+                    + [_order_cell(o, c) for c in components] + [h_range, overall_verdict(o, components)])
+    lines += md.table(["scene", "integrator", "declared", "declared (R)", *components, "fit range h (contact)",
+                       "verdict"], rows)
     return lines + [""]
 
 
@@ -169,9 +170,9 @@ def header_section(report, metric):
              f"- build: {build.get('compiler', '—')} {build.get('type', '')}"
              + (f" `{build['flags']}`" if build.get("flags") else ""),
              f"- runs: {len(rp.runs(report))}, scenes: {', '.join(rp.scenes(report)) or '—'}",
-             f"- accuracy metric of the cost tables: {metric} ({rp.METRIC_LABELS[metric]}), read from each run's "
-             f"`{rp._error_key}`" + (" (at t_end)" if rp._error_key == "error"
-                                     else " (the largest over the timed run's steps)"), ""]
+             f"- accuracy metric of the cost tables: {metric} ({rp.metric_label(report, metric)}), read from each "
+             f"run's `{rp._error_key}`" + (" (at t_end)" if rp._error_key == "error"
+                                           else " (the largest over the timed run's steps)"), ""]
     refs = rp.section_entries(report, "references")
     if refs:
         rows = [[r["scene"], r.get("kind", "—"), r.get("method", "—"), r.get("cross_check", "—"),

@@ -311,7 +311,7 @@ int run_score(const ScoreArgs& a) {
 int run_merge(const std::vector<std::string>& inputs, const std::string& out) {
   std::vector<nlohmann::json> shards;
   for (const std::string& path : inputs) shards.push_back(rb::read_report(path));
-  write_json(rb::merge_reports(shards), out);
+  write_json(rb::merge_reports(shards, inputs), out);
   std::printf("merged %zu reports into %s\n", inputs.size(), out.c_str());
   return 0;
 }

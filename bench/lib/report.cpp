@@ -102,9 +102,17 @@ json options_of(const SweepSpec& s) {
 }  // namespace
 
 json errors_json(const RunErrors& e, const std::string& reference_kind) {
-  return {{"reference", reference_kind}, {"contact", number(e.contact)}, {"centre", number(e.centre)},
-          {"omega", number(e.omega)}, {"rotation", number(e.rotation)}, {"worst", number(e.worst)},
-          {"floor", e.floor}, {"below_floor", e.below_floor}, {"points", e.points}};
+  json j = {{"reference", reference_kind}, {"worst", number(e.worst)}, {"floor", e.floor},
+            {"below_floor", e.below_floor}, {"points", e.points}};
+  for (std::size_t i = 0; i < kErrorComponentCount; ++i) j[kErrorComponents[i].name] = number(e.component(i));
+  return j;
+}
+
+json error_components_json() {
+  json list = json::array();
+  for (const ErrorComponent& c : kErrorComponents)
+    list.push_back({{"name", c.name}, {"label", c.label}, {"unit", c.unit}, {"scale", scale_name(c.scale)}});
+  return list;
 }
 
 json run_json(const RunRecord& r, const std::string& reference_kind) {
@@ -198,14 +206,14 @@ using RunKey = std::pair<std::string, std::string>;  // (scene, integrator)
 // integrator), keys in order of first appearance.
 struct RunGroups {
   std::vector<RunKey> keys;
-  std::map<RunKey, std::vector<const json*>> members;
+  std::map<RunKey, std::vector<const FitRun*>> members;
 };
 
-RunGroups group_runs(const json& runs, bool adaptive) {
+RunGroups group_runs(const std::vector<FitRun>& runs, bool adaptive) {
   RunGroups g;
-  for (const json& r : runs) {
-    if (r.at("adaptive").get<bool>() != adaptive) continue;
-    const RunKey key{r.at("scene").get<std::string>(), r.at("integrator").get<std::string>()};
+  for (const FitRun& r : runs) {
+    if (r.adaptive != adaptive) continue;
+    const RunKey key{r.scene, r.integrator};
     if (!g.members.count(key)) g.keys.push_back(key);
     g.members[key].push_back(&r);
   }
@@ -214,22 +222,22 @@ RunGroups group_runs(const json& runs, bool adaptive) {
 
 }  // namespace
 
-json fit_tolerances(const json& runs) {
+json fit_tolerances(const std::vector<FitRun>& runs) {
   const RunGroups groups = group_runs(runs, true);
   json fits = json::array();
   for (const RunKey& key : groups.keys) {
     std::vector<double> log_tol, log_error;
-    for (const json* r : groups.members.at(key)) {
-      const double tol = as_number(r->at("rtol")), e = as_number(r->at("error").at("worst"));
+    for (const FitRun* r : groups.members.at(key)) {
+      const double tol = r->rtol, e = r->error.worst;
       if (tol > 0.0 && e > 0.0) log_tol.push_back(std::log10(tol)), log_error.push_back(std::log10(e));
     }
     const LineFit line = fit_line(log_tol, log_error);
     // the observed order of a method whose step it picks itself: the slope
     // of log error against log mean step, t_end / steps, over the same runs
     std::vector<double> log_step, log_step_error;
-    for (const json* r : groups.members.at(key)) {
-      const double e = as_number(r->at("error").at("worst")), steps = as_number(r->at("steps"));
-      const double t = as_number(r->at("stop_time"));
+    for (const FitRun* r : groups.members.at(key)) {
+      const double e = r->error.worst, steps = static_cast<double>(r->steps);
+      const double t = r->stop_time;
       if (e > 0.0 && steps > 0.0 && t > 0.0)
         log_step.push_back(std::log10(t / steps)), log_step_error.push_back(std::log10(e));
     }
@@ -243,31 +251,30 @@ json fit_tolerances(const json& runs) {
   return fits;
 }
 
-json fit_orders(const json& runs, const json& references) {
-  std::map<std::string, double> floors;
-  for (const json& r : references) floors[r.at("scene").get<std::string>()] = r.at("error").get<double>();
+json fit_orders(const std::vector<FitRun>& runs, const ReferenceFloors& floors) {
   const RunGroups groups = group_runs(runs, false);
   json orders = json::array();
-  const char* components[] = {"contact", "centre", "omega", "rotation"};
   for (const RunKey& key : groups.keys) {
-    const std::vector<const json*>& group = groups.members.at(key);
-    const json& first = *group.front();
+    const std::vector<const FitRun*>& group = groups.members.at(key);
+    const FitRun& first = *group.front();
     json observed, ci95, fits, verdicts, reasons;
     bool lower = false, all_as_declared = true;
-    for (const char* c : components) {
+    for (std::size_t i = 0; i < kErrorComponentCount; ++i) {
+      const std::string c = kErrorComponents[i].name;
       std::vector<double> h, e;
-      const double floor = floors.count(key.first) ? floors[key.first] : 0.0;
-      for (const json* r : group) {
-        h.push_back(as_number(r->at("h")));
+      const auto found = floors.find(key.first);
+      const double floor = found != floors.end() ? found->second : 0.0;
+      for (const FitRun* r : group) {
+        h.push_back(r->h);
         // below the floor: null in the report, the floor here (counted, never fitted)
-        const json& below = r->at("error").at("below_floor");
+        const std::vector<std::string>& below = r->error.below_floor;
         const bool at_floor = std::find(below.begin(), below.end(), c) != below.end();
-        e.push_back(at_floor ? floor : as_number(r->at("error").at(c)));
+        e.push_back(at_floor ? floor : r->error.component(i));
       }
       // up to 8 points: on the quarter-step ladder 6 span only 1.5 halvings
       const OrderFit fit = fit_order(h, e, floor, 0.1, 8);
-      const int declared = std::string(c) == "rotation" ? first.at("declared_rotation_order").get<int>()
-                                                        : first.at("declared_order").get<int>();
+      const int declared = kErrorComponents[i].name == std::string("rotation") ? first.declared_rotation_order
+                                                                              : first.declared_order;
       // a higher order than declared is no failure: for odd-order flat-view
       // methods the leading error in R is symmetric, so the rotation angle
       // after projection converges one order faster
@@ -288,14 +295,26 @@ json fit_orders(const json& runs, const json& references) {
         fits[c] = {{"points", std::max(0, fit.points)}};
       }
     }
-    orders.push_back({{"scene", key.first}, {"integrator", key.second}, {"declared", first.at("declared_order")},
-                      {"declared_rotation", first.at("declared_rotation_order")}, {"observed", observed},
+    orders.push_back({{"scene", key.first}, {"integrator", key.second}, {"declared", first.declared_order},
+                      {"declared_rotation", first.declared_rotation_order}, {"observed", observed},
                       {"ci95", ci95}, {"fit", fits["contact"]}, {"fits", fits}, {"verdict", verdicts},
                       {"inconclusive_reason", reasons},
                       {"pass", lower ? json(false) : all_as_declared ? json(true) : json(nullptr)}});
   }
   return orders;
 }
+
+namespace {
+
+// What a report derives from its runs, written alike by a sweep and by a
+// merge of its shards: the component list, the orders and the tolerance fits.
+void put_fits(json& report, const std::vector<FitRun>& runs, const ReferenceFloors& floors) {
+  report["error_components"] = error_components_json();
+  report["orders"] = fit_orders(runs, floors);
+  report["tolerance_fits"] = fit_tolerances(runs);
+}
+
+}  // namespace
 
 json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes, const std::vector<RunRecord>& runs,
                  const StabilityResults& stability, const HorizonResults& horizon) {
@@ -309,15 +328,21 @@ json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes, c
                           {"message", s.reference.message}});
   std::map<std::string, std::string> kind;
   for (const SweepScene& s : scenes) kind[s.scene.name] = s.reference.kind;
+  ReferenceFloors floors;
+  for (const SweepScene& s : scenes) floors[s.scene.name] = s.reference.error;
   json run_list = json::array();
-  for (const RunRecord& r : runs) run_list.push_back(run_json(r, kind[r.scene]));
+  std::vector<FitRun> fit_input;
+  for (const RunRecord& r : runs) {
+    run_list.push_back(run_json(r, kind[r.scene]));
+    fit_input.push_back(fit_run(r));
+  }
   json options = options_of(spec);
   options["shard"] = {spec.shard_index, spec.shard_count};
   json report = {{"schema", kReportSchema}, {"created", utc_now()}, {"git", code_version()}, {"machine", machine()},
                  {"build", build()}, {"preset", spec.preset}, {"options", options}, {"references", references},
-                 {"timed_call", timed_call(spec)}, {"runs", run_list}, {"orders", fit_orders(run_list, references)},
-                 {"tolerance_fits", fit_tolerances(run_list)}, {"stability", stability_json(stability)},
+                 {"timed_call", timed_call(spec)}, {"runs", run_list}, {"stability", stability_json(stability)},
                  {"horizon", horizon_json(horizon)}};
+  put_fits(report, fit_input, floors);
   if (spec.regime) {
     // the grid in the options too, so that shards of two grids refuse to merge
     report["options"]["regime"] = regime_axes_json(*spec.regime);
@@ -376,47 +401,100 @@ void check_every_shard_once(const std::vector<json>& shards) {
 
 }  // namespace
 
-json merge_reports(const std::vector<json>& shards) {
+namespace {
+
+// A shard's run: its entry as written, and what the fits read of it.
+struct ShardRun {
+  long index = 0;
+  json entry;
+  FitRun fit;
+};
+
+long index_of(const json& entry, const std::string& where) {
+  if (!entry.is_object() || !entry.contains("index") || !entry["index"].is_number_integer())
+    throw InputError(where + ".index is missing or not an integer", "reports");
+  return entry["index"].get<long>();
+}
+
+const json& list_at(const json& report, const std::string& section, const std::string& key, const std::string& file) {
+  const json* node = &report;
+  for (const std::string& part : {section, key}) {
+    if (part.empty()) continue;
+    if (!node->is_object() || !node->contains(part))
+      throw InputError("the report '" + file + "' has no key '" + (key.empty() ? section : section + "." + key) + "'",
+                       "reports");
+    node = &node->at(part);
+  }
+  if (!node->is_array())
+    throw InputError("the report '" + file + "': '" + (key.empty() ? section : section + "." + key) + "' is not a list",
+                     "reports");
+  return *node;
+}
+
+}  // namespace
+
+json merge_reports(const std::vector<json>& shards, const std::vector<std::string>& files) {
   if (shards.empty()) throw InputError("nothing to merge", "reports");
   check_every_shard_once(shards);
   json merged = shards.front();
   json base_options = merged.at("options");
   base_options.erase("shard");
-  json runs = json::array(), drift = json::array(), stable = json::array(), references = json::array();
+  std::vector<ShardRun> runs;
+  json drift = json::array(), stable = json::array(), references = json::array();
   json horizon = json::array();
-  for (const json& s : shards) {
+  for (std::size_t k = 0; k < shards.size(); ++k) {
+    const json& s = shards[k];
+    const std::string file = k < files.size() ? files[k] : "shard report " + std::to_string(k);
     json options = s.at("options");
     options.erase("shard");
     if (options != base_options) throw InputError("the reports come from different sweeps (their options differ)", "reports");
-    for (const json& r : s.at("runs")) runs.push_back(r);
-    for (const json& d : s.at("stability").at("drift")) drift.push_back(d);
-    for (const json& d : s.at("stability").at("largest_stable_h")) stable.push_back(d);
+    const json& entries = list_at(s, "runs", "", file);
+    const std::vector<FitRun> fits = fit_runs_of(entries, file);
+    for (std::size_t i = 0; i < entries.size(); ++i)
+      runs.push_back({index_of(entries[i], "the report '" + file + "': runs[" + std::to_string(i) + "]"), entries[i],
+                      fits[i]});
+    for (const json& d : list_at(s, "stability", "drift", file)) drift.push_back(d);
+    for (const json& d : list_at(s, "stability", "largest_stable_h", file)) stable.push_back(d);
     if (s.contains("horizon"))  // absent from reports older than the horizon study
-      for (const json& d : s.at("horizon").at("runs")) horizon.push_back(d);
-    for (const json& r : s.at("references"))
+      for (const json& d : list_at(s, "horizon", "runs", file)) horizon.push_back(d);
+    const json& refs = list_at(s, "references", "", file);
+    for (std::size_t i = 0; i < refs.size(); ++i) {
+      const json& r = refs[i];
+      const std::string where = "the report '" + file + "': references[" + std::to_string(i) + "]";
+      if (!r.is_object() || !r.contains("scene") || !r["scene"].is_string())
+        throw InputError(where + ".scene is missing or not a string", "reports");
+      // a reference's own error: null where it was not finite
+      if (!r.contains("error") || !(r["error"].is_number() || r["error"].is_null()))
+        throw InputError(where + ".error is missing or not a number or null", "reports");
       if (std::none_of(references.begin(), references.end(), [&](const json& x) { return x["scene"] == r["scene"]; }))
         references.push_back(r);
+    }
   }
   auto by_index = [](const json& a, const json& b) { return a.at("index").get<long>() < b.at("index").get<long>(); };
-  std::sort(runs.begin(), runs.end(), by_index);
+  std::sort(runs.begin(), runs.end(), [](const ShardRun& a, const ShardRun& b) { return a.index < b.index; });
   std::sort(drift.begin(), drift.end(), by_index);
   std::sort(stable.begin(), stable.end(), by_index);
   std::sort(horizon.begin(), horizon.end(), by_index);
+  json run_list = json::array();
+  std::vector<FitRun> fit_input;
+  for (const ShardRun& r : runs) run_list.push_back(r.entry), fit_input.push_back(r.fit);
   // references in the order their scenes first appear in the sweep
   json ordered_refs = json::array();
-  for (const json& r : runs)
+  ReferenceFloors floors;
+  for (const FitRun& r : fit_input)
     for (const json& ref : references)
-      if (ref["scene"] == r["scene"] &&
-          std::none_of(ordered_refs.begin(), ordered_refs.end(), [&](const json& x) { return x["scene"] == ref["scene"]; }))
+      if (ref["scene"] == r.scene && std::none_of(ordered_refs.begin(), ordered_refs.end(),
+                                                  [&](const json& x) { return x["scene"] == ref["scene"]; })) {
         ordered_refs.push_back(ref);
+        floors[r.scene] = as_number(ref["error"]);
+      }
   merged["options"] = base_options;
   merged["options"]["shard"] = {0, 1};
   merged["references"] = ordered_refs;
-  merged["runs"] = runs;
+  merged["runs"] = run_list;
   merged["stability"] = {{"drift", drift}, {"largest_stable_h", stable}};
   merged["horizon"] = {{"runs", horizon}};
-  merged["orders"] = fit_orders(runs, ordered_refs);
-  merged["tolerance_fits"] = fit_tolerances(runs);
+  put_fits(merged, fit_input, floors);
   return merged;
 }
 

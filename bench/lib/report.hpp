@@ -2,11 +2,13 @@
 // The JSON report of docs/formats.md ("rollbench.report/2"): provenance, the runs,
 // the observed orders, the references and the stability study; and merging
 // the reports of shards back into one.
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "bench/lib/horizon.hpp"
+#include "bench/lib/fit_run.hpp"
 #include "bench/lib/stability.hpp"
 #include "bench/lib/sweep.hpp"
 
@@ -26,25 +28,36 @@ nlohmann::json errors_json(const RunErrors& errors, const std::string& reference
 // A run's entry of "runs" (docs/formats.md, "A run").
 nlohmann::json run_json(const RunRecord& record, const std::string& reference_kind);
 
+// Each scene's reference floor (its own error): errors below it are
+// counted at the floor, never fitted.
+using ReferenceFloors = std::map<std::string, double>;
+
 // The "orders" entries for the runs of a report: per (scene, integrator) of a
 // fixed-step method, the slope of log error on log h per component with its
 // 95 % interval, a verdict per component (order_verdict: "as declared",
 // "lower", "inconclusive") and pass: false when a component is lower, true
 // when every one is as declared, null otherwise.
-nlohmann::json fit_orders(const nlohmann::json& runs, const nlohmann::json& references);
+nlohmann::json fit_orders(const std::vector<FitRun>& runs, const ReferenceFloors& floors);
 
 // The "tolerance_fits" entries: per (scene, integrator) of an adaptive
 // method, the least-squares line of log10 worst error (at t_end) against
 // log10 tolerance over its runs that reached t_end, and step_order: the
 // slope of log10 worst error against log10 of the mean step (stop_time /
 // steps), the observed order of a method that picks its own steps.
-nlohmann::json fit_tolerances(const nlohmann::json& runs);
+nlohmann::json fit_tolerances(const std::vector<FitRun>& runs);
+
+// The report's "error_components": kErrorComponents with name, label,
+// unit and scale.
+nlohmann::json error_components_json();
 
 // Joins shard reports: runs, references, stability and horizon records in sweep
-// order, orders and tolerance fits refitted. Throws InputError for reports
-// of another schema or of different sweeps, and unless every shard 0..n-1 is
-// there once (the message names the missing ones).
-nlohmann::json merge_reports(const std::vector<nlohmann::json>& shards);
+// order; the runs parsed into FitRuns, orders and tolerance fits refitted
+// as a whole sweep fits them. Throws InputError for reports of another
+// schema or of different sweeps, unless every shard 0..n-1 is there once
+// (the message names the missing ones), and for a run or reference a fit
+// cannot read (naming files[k], "shard report k" where files is short, and
+// the key).
+nlohmann::json merge_reports(const std::vector<nlohmann::json>& shards, const std::vector<std::string>& files = {});
 
 // Reads a report and checks its schema string; throws InputError naming the
 // file.

@@ -203,6 +203,8 @@ json score_peers(const std::string& peers_path, const std::string& into, const s
       if (c.contains("scene") && c["scene"].is_string()) rhs_costs[c["scene"].get<std::string>()] = c;
   const std::filesystem::path folder = std::filesystem::path(peers_path).parent_path();
   json& report_runs = report["runs"];
+  // the fits read the report's runs as a merge does, and the peer's as a sweep does
+  std::vector<FitRun> fit_input = into.empty() ? std::vector<FitRun>{} : fit_runs_of(report_runs, into);
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const std::string where = "runs[" + std::to_string(i) + "].";
     const std::string scene = runs[i]["scene"].get<std::string>();
@@ -213,8 +215,10 @@ json score_peers(const std::string& peers_path, const std::string& into, const s
     j["rejected"] = nullptr;  // a library that does not say
     j["peer"] = peer_facts(runs[i], peer, rhs_costs.count(scene) ? rhs_costs[scene] : json::object(), r);
     report_runs.push_back(j);
+    fit_input.push_back(fit_run(r));
   }
-  report["tolerance_fits"] = fit_tolerances(report_runs);
+  report["tolerance_fits"] = fit_tolerances(fit_input);
+  report["error_components"] = error_components_json();  // what the peer's runs were measured in
   json entry = {{"peer", peer}, {"file", peers_path}};
   for (const char* key : {"versions", "library", "abi_version", "timing", "rhs_cost"})
     if (peers.contains(key)) entry[key] = peers[key];

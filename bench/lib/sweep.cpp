@@ -1,6 +1,7 @@
 #include "bench/lib/sweep.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -42,10 +43,10 @@ RunOptions options_of(const SweepScene& s, const SweepTask& task, long max_steps
   return o;
 }
 
-// The errors of one state against one reference point: {contact, centre,
-// omega, rotation} in their units, and worst, dimensionless.
+// The errors of one state against one reference point: the components of
+// kErrorComponents in their units, and worst, dimensionless.
 struct PointErrors {
-  double values[4];
+  std::array<double, kErrorComponentCount> values;
   double worst;
 };
 
@@ -55,13 +56,11 @@ PointErrors point_errors(const SweepScene& s, const ReferencePoint& ref, const F
                  rotation_angle_between(ref.R, got.R)},
                 0.0};
   const double r = s.problem.model().params().radius;
-  const double scales[4] = {r, r, s.omega_scale, 1.0};
-  for (int i = 0; i < 4; ++i) e.worst = std::max(e.worst, e.values[i] / scales[i]);
+  for (std::size_t i = 0; i < kErrorComponentCount; ++i)
+    e.worst = std::max(e.worst, e.values[i] / scale_value(kErrorComponents[i].scale, r, s.omega_scale));
   if (!std::isfinite(e.worst)) e.worst = kNaN;
   return e;
 }
-
-constexpr const char* kComponents[4] = {"contact", "centre", "omega", "rotation"};
 
 // Fills errors from the largest of each component over points (one point:
 // the errors at t_end). A component below the reference's floor is NaN and
@@ -69,15 +68,14 @@ constexpr const char* kComponents[4] = {"contact", "centre", "omega", "rotation"
 void store(RunErrors& errors, const PointErrors& largest, double floor, int points) {
   errors.floor = floor;
   errors.points = points;
-  double* slots[4] = {&errors.contact, &errors.centre, &errors.omega, &errors.rotation};
-  for (int i = 0; i < 4; ++i) {
+  for (std::size_t i = 0; i < kErrorComponentCount; ++i) {
     if (largest.values[i] < floor) {
-      errors.below_floor.push_back(kComponents[i]);
+      errors.below_floor.push_back(kErrorComponents[i].name);
     } else {
-      *slots[i] = largest.values[i];
+      errors.component(i) = largest.values[i];
     }
   }
-  if (errors.below_floor.size() == 4) {
+  if (errors.below_floor.size() == kErrorComponentCount) {
     errors.below_floor.push_back("worst");
   } else {
     errors.worst = largest.worst;
@@ -86,7 +84,7 @@ void store(RunErrors& errors, const PointErrors& largest, double floor, int poin
 
 PointErrors largest_of(const PointErrors& a, const PointErrors& b) {
   PointErrors m = a;
-  for (int i = 0; i < 4; ++i) m.values[i] = std::max(a.values[i], b.values[i]);
+  for (std::size_t i = 0; i < kErrorComponentCount; ++i) m.values[i] = std::max(a.values[i], b.values[i]);
   m.worst = std::max(a.worst, b.worst);
   return m;
 }
@@ -106,11 +104,12 @@ void measure_end(const SweepScene& s, const RunResult& run, RunRecord& r) {
   const PointErrors e = point_errors(s, ref, run.output.y.back());
   store(r.error, e, s.reference.error, 1);
   // relative to the reference's size, with 1 as the scale floor (mixed
-  // absolute-relative, as the IVP Test Set's scd)
-  const double scales[4] = {std::max(1.0, ref.alpha.norm()), std::max(1.0, ref.centre.norm()),
-                            std::max(1.0, ref.omega.norm()), 1.0};
+  // absolute-relative, as the IVP Test Set's scd), in the order of kErrorComponents
+  const std::array<double, kErrorComponentCount> scales{
+      std::max(1.0, ref.alpha.norm()), std::max(1.0, ref.centre.norm()), std::max(1.0, ref.omega.norm()), 1.0};
   double worst_relative = 0.0;
-  for (int i = 0; i < 4; ++i) worst_relative = std::max(worst_relative, e.values[i] / scales[i]);
+  for (std::size_t i = 0; i < kErrorComponentCount; ++i)
+    worst_relative = std::max(worst_relative, e.values[i] / scales[i]);
   // an error below the reference's floor counts as the floor: no more digits
   // can be claimed than the reference has
   if (std::isfinite(worst_relative))
@@ -126,7 +125,7 @@ void measure_grid(const SweepScene& s, const RunResult& run, RunRecord& r) {
   r.rotation_drift = drift.rotation_defect;
   r.error_max.floor = s.reference.error;
   if (!reached_end(s, run)) return;
-  PointErrors largest{{0, 0, 0, 0}, 0.0};
+  PointErrors largest{};  // every component 0, worst 0
   std::size_t k = 0;  // both time lists increase: walk them together
   int points = 0;
   for (std::size_t i = 0; i < run.output.t.size(); ++i) {

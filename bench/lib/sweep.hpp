@@ -3,11 +3,13 @@
 // (in parallel over --jobs threads), then timed alone on one thread so that
 // timings are not disturbed, in rounds of one repeat of every run. A failing run is a record
 // with its status, cost and the time it reached; nothing stops the sweep.
+#include <array>
 #include <functional>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "bench/lib/error_components.hpp"
 #include "bench/lib/presets.hpp"
 #include "bench/lib/reference.hpp"
 #include "integrators/integrator.hpp"
@@ -34,11 +36,20 @@ struct SweepScene {
 // (listed by name; worst only when every component is).
 struct RunErrors {
   double contact = kNaN, centre = kNaN, omega = kNaN, rotation = kNaN, worst = kNaN;
+  // component i of kErrorComponents (bench/lib/error_components.hpp)
+  double& component(std::size_t i);
+  double component(std::size_t i) const;
   double floor = 0.0;
   std::vector<std::string> below_floor;
   double scd = kNaN;  // significant correct digits: -log10 of the largest relative error
   int points = 0;     // output times measured (1 at t_end)
 };
+
+// RunErrors' fields in the order of kErrorComponents.
+inline constexpr std::array<double RunErrors::*, kErrorComponentCount> kErrorSlots{
+    &RunErrors::contact, &RunErrors::centre, &RunErrors::omega, &RunErrors::rotation};
+inline double& RunErrors::component(std::size_t i) { return this->*kErrorSlots.at(i); }
+inline double RunErrors::component(std::size_t i) const { return this->*kErrorSlots.at(i); }
 
 // How the largest error over the outputs was obtained: from an untimed run
 // that records the error grid, which for fixed-step and dense-output methods

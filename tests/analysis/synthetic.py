@@ -63,7 +63,14 @@ PLANTED_VERDICTS = {
     ("valley-sideways", "gsl-rk4"): ("lower", 0.05),
 }
 COMPONENT_SCALE = {"contact": 1.0, "centre": 1.1, "omega": 3.0}
-COMPONENTS = ("contact", "centre", "omega", "rotation")
+# the report's "error_components" as rollbench writes them (bench/lib/error_components.hpp)
+ERROR_COMPONENTS = [
+    {"name": "contact", "label": "contact-point error", "unit": "m", "scale": "radius"},
+    {"name": "centre", "label": "centre error", "unit": "m", "scale": "radius"},
+    {"name": "omega", "label": "angular-velocity error", "unit": "rad/s", "scale": "omega_scale"},
+    {"name": "rotation", "label": "rotation error", "unit": "rad", "scale": "1"},
+]
+COMPONENTS = tuple(c["name"] for c in ERROR_COMPONENTS)
 # ball radius and omega scale are 1, so "worst" is the largest component
 
 
@@ -247,6 +254,7 @@ def make_report():
         "machine": {"cpu": "Synthetic CPU", "cores": 2, "os": "Linux", "load": [0.1, 0.1, 0.1]},
         "build": {"compiler": "g++ 12.2", "flags": "-O3", "type": "Release", "libraries": {}},
         "preset": "custom",
+        "error_components": copy.deepcopy(ERROR_COMPONENTS),
         "references": [{"scene": s, "kind": k, "method": "exact" if k == "exact" else "rk8pd h/2 cross-check",
                         "cross_check": "—" if k == "exact" else "dopri5 tol 1e-14", "error": f,
                         "inertia": INERTIA.get(s), "r_feeds_back": s in INERTIA}

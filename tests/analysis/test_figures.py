@@ -104,7 +104,7 @@ class FiguresOfSyntheticReport(unittest.TestCase):
     def test_work_precision_says_its_metric(self):
         for name in ("work-precision-plane.png", "work-precision-best-plane.png"):
             axes = [ax for ax in self.figures[name].axes if ax.get_lines()]
-            self.assertEqual(axes[0].get_ylabel(), rp.METRIC_LABELS["worst"])
+            self.assertEqual(axes[0].get_ylabel(), rp.WORST_LABEL)
             self.assertTrue(all("worst error against" in ax.get_title() for ax in axes))
         fig = figures_precision.work_precision(self.report, "plane", style.Palette(rp.families(self.report)),
                                                "rotation")
@@ -252,7 +252,8 @@ class FiguresOfSyntheticReport(unittest.TestCase):
             done = subprocess.run([sys.executable, os.path.join(ROOT, "analysis", "plot.py"), path, "--out", tmp,
                                    "--metric", "energy"], capture_output=True, text=True, cwd=tmp)
             self.assertEqual(done.returncode, 2)
-            self.assertIn("argument --metric: invalid choice: 'energy'", done.stderr)
+            self.assertIn("--metric 'energy' is none of worst, contact, centre, omega, rotation (worst and the "
+                          "report's error_components)", done.stderr)
 
     def test_a_scene_rollbench_refuses_is_left_out_with_its_message(self):
         with tempfile.TemporaryDirectory() as tmp:
@@ -302,6 +303,13 @@ class ReportValidation(unittest.TestCase):
         report = syn.make_report()
         del report["stability"]["drift"][0]["t"]
         with self.assertRaisesRegex(rp.ReportError, r"stability.drift\[0\] has no key 't'"):
+            rp.validate(report)
+        report = syn.make_report()
+        del report["error_components"]
+        with self.assertRaisesRegex(rp.ReportError, "report: missing key 'error_components'"):
+            rp.validate(report)
+        report["error_components"] = [{"name": "contact", "unit": "m"}]
+        with self.assertRaisesRegex(rp.ReportError, r"error_components\[0\] has no text key 'label'"):
             rp.validate(report)
 
 

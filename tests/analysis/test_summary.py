@@ -7,6 +7,7 @@ import unittest
 
 from analysis import costs, pairs, summary
 from analysis import markdown as md
+from analysis import report as rp
 from tests.analysis import synthetic as syn
 
 REL = 6e-3  # the tables print 3 significant digits
@@ -242,6 +243,21 @@ class CostInterpolation(unittest.TestCase):
         self.assertTrue(math.isnan(costs.cost_to_reach(self.points([(1.0, 1e-3), (2.0, 1e-4)]), 1e-9)[0]))
         self.assertEqual(costs.cost_to_reach(self.points([(1.0, 1e-3), (2.0, 1e-4)]), 1e-2), (1.0, "≤"))
         self.assertTrue(math.isnan(costs.cost_to_reach([], 1e-2)[0]))
+
+
+class ErrorComponentsOfTheReport(unittest.TestCase):
+    def test_the_error_components_come_from_the_report(self):
+        report = syn.make_report()
+        self.assertEqual(rp.components(report), ("contact", "centre", "omega", "rotation"))
+        self.assertEqual(rp.metric_label(report, "omega"), "angular-velocity error (rad/s)")
+        # a report that lists fewer components shows only those
+        report["error_components"] = [c for c in report["error_components"] if c["name"] in ("contact", "rotation")]
+        self.assertEqual(rp.metrics(report), ("worst", "contact", "rotation"))
+        header = next(line for line in summary.orders_section(report) if line.startswith("| scene"))
+        self.assertEqual(header, "| scene | integrator | declared | declared (R) | contact | rotation | "
+                                 "fit range h (contact) | verdict |")
+        with self.assertRaisesRegex(rp.ReportError, "no error component 'omega' in the report"):
+            rp.metric_label(report, "omega")
 
 
 if __name__ == "__main__":

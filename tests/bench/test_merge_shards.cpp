@@ -47,5 +47,50 @@ TEST(MergeShards, RepeatedOrMixedShardsAreRefused) {
             "'reports': the reports come from sweeps cut into 2 and 3 shards");
 }
 
+// A shard's runs are parsed into what the fits read: a run a fit cannot
+// read is refused with the shard's file and the key, not a JSON exception.
+TEST(MergeShards, ARunTheFitsCannotReadNamesItsFileAndKey) {
+  const json run = {{"index", 0}, {"scene", "plane"}, {"integrator", "rk4"}, {"adaptive", false},
+                    {"declared_order", 4}, {"declared_rotation_order", 4}, {"h", 0.5}, {"rtol", nullptr},
+                    {"stop_time", 1.0}, {"steps", 2},
+                    {"error", {{"contact", 1e-3}, {"centre", 1e-3}, {"omega", nullptr}, {"rotation", 1e-4},
+                               {"worst", 1e-3}, {"below_floor", {"omega"}}}}};
+  auto merged_with = [&](const json& bad) -> std::string {
+    json second = empty_shard(1, 2);
+    second["runs"] = {bad};
+    try {
+      merge_reports({empty_shard(0, 2), second}, {"a.json", "b.json"});
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "(merged)";
+  };
+  EXPECT_EQ(merged_with(run), "(merged)");
+  json no_omega = run;
+  no_omega["error"].erase("omega");
+  EXPECT_EQ(merged_with(no_omega), "'reports': the report 'b.json': runs[0].error.omega is missing");
+  json text_h = run;
+  text_h["h"] = "0.5";
+  EXPECT_EQ(merged_with(text_h), "'reports': the report 'b.json': runs[0].h is not a number or null");
+  json float_steps = run;
+  float_steps["steps"] = 2.5;
+  EXPECT_EQ(merged_with(float_steps), "'reports': the report 'b.json': runs[0].steps is not an integer");
+  json bad_below = run;
+  bad_below["error"]["below_floor"] = {1};
+  EXPECT_EQ(merged_with(bad_below),
+            "'reports': the report 'b.json': runs[0].error.below_floor holds something that is not a string");
+  json no_scene = empty_shard(1, 2);
+  no_scene["references"] = {{{"error", 1e-12}}};
+  EXPECT_EQ(merge_error({empty_shard(0, 2), no_scene}),
+            "'reports': the report 'shard report 1': references[0].scene is missing or not a string");
+}
+
+// The merged report lists the components as a sweep's does.
+TEST(MergeShards, TheMergedReportListsTheErrorComponents) {
+  const json merged = merge_reports({empty_shard(1, 2), empty_shard(0, 2)});
+  EXPECT_EQ(merged.at("error_components"), error_components_json());
+  EXPECT_EQ(merged.at("error_components").size(), kErrorComponentCount);
+}
+
 }  // namespace
 }  // namespace rb

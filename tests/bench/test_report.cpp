@@ -77,6 +77,31 @@ TEST(Report, QuickPresetFollowsTheSchemaAndRoundTrips) {
   EXPECT_EQ(again, r);
 }
 
+// The components are listed once (bench/lib/error_components.hpp) and the
+// report carries the list: every run's errors and every order hold exactly
+// those, and the fits read from the written runs are the report's own.
+TEST(Report, TheReportListsItsErrorComponentsAndItsFitsReadThemBack) {
+  const json again = json::parse(quick_report().dump());
+  const json expected = json::parse(R"([
+    {"name": "contact", "label": "contact-point error", "unit": "m", "scale": "radius"},
+    {"name": "centre", "label": "centre error", "unit": "m", "scale": "radius"},
+    {"name": "omega", "label": "angular-velocity error", "unit": "rad/s", "scale": "omega_scale"},
+    {"name": "rotation", "label": "rotation error", "unit": "rad", "scale": "1"}])");
+  ASSERT_EQ(again.at("error_components"), expected);
+  for (const json& run : again["runs"])
+    for (const json& c : expected) EXPECT_TRUE(run["error"].contains(c["name"])) << c["name"];
+  ASSERT_FALSE(again["orders"].empty());
+  for (const json& o : again["orders"]) {
+    EXPECT_EQ(o["observed"].size(), expected.size());
+    for (const json& c : expected) EXPECT_TRUE(o["verdict"].contains(c["name"])) << c["name"];
+  }
+  ReferenceFloors floors;
+  for (const json& ref : again["references"]) floors[ref["scene"]] = ref["error"].get<double>();
+  const std::vector<FitRun> runs = fit_runs_of(again["runs"], "quick.json");
+  EXPECT_EQ(fit_orders(runs, floors), again["orders"]);
+  EXPECT_EQ(fit_tolerances(runs), again["tolerance_fits"]);
+}
+
 double observed(const json& report, const std::string& scene, const std::string& integrator, const char* component) {
   for (const json& o : report["orders"])
     if (o["scene"] == scene && o["integrator"] == integrator)
