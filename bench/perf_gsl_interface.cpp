@@ -11,13 +11,12 @@
 //              machine hit both alike; counter interface_over_direct.
 // Counters: ns_per_step. Run with --benchmark_out=FILE.json for the analysis.
 #include <benchmark/benchmark.h>
-
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
 
 #include "bench/side_by_side.hpp"
-#include "integrators/steppers/gsl.hpp"
 #include "integrators/registry.hpp"
+#include "integrators/steppers/gsl.hpp"
 #include "problems/scene.hpp"
 
 namespace {
@@ -54,8 +53,7 @@ double run_direct() {
   rb::FlatState y = valley().y0(), yerr;
   for (long i = 0; i < kSteps; ++i) {
     const double t = static_cast<double>(i) * kH;
-    if (gsl_odeiv2_step_apply(step, t, kH, y.data(), yerr.data(), nullptr, nullptr, &sys) != GSL_SUCCESS)
-      std::abort();
+    if (gsl_odeiv2_step_apply(step, t, kH, y.data(), yerr.data(), nullptr, nullptr, &sys) != GSL_SUCCESS) std::abort();
   }
   gsl_odeiv2_step_free(step);
   return y[rb::kOffsetAlpha];

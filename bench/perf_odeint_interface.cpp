@@ -13,14 +13,13 @@
 // Counter ns_per_step everywhere. Run with --benchmark_out=FILE.json.
 #include <benchmark/benchmark.h>
 
-#include <functional>
-
 #include <boost/numeric/odeint/integrate/integrate_n_steps.hpp>
 #include <boost/numeric/odeint/stepper/runge_kutta4.hpp>
+#include <functional>
 
 #include "bench/side_by_side.hpp"
-#include "integrators/steppers/odeint.hpp"
 #include "integrators/registry.hpp"
+#include "integrators/steppers/odeint.hpp"
 #include "problems/scene.hpp"
 
 namespace {

@@ -27,8 +27,8 @@
 
 #include "bench/hand_coded_ball.hpp"
 #include "bench/side_by_side.hpp"
-#include "integrators/steppers/gsl.hpp"
 #include "integrators/registry.hpp"
+#include "integrators/steppers/gsl.hpp"
 #include "problems/scene.hpp"
 
 namespace {
@@ -80,10 +80,8 @@ SceneBench make_scene_bench(const std::string& scene, Surface surface) {
     };
   };
   SceneBench b{scene,
-               {suite("rk4"),
-                [ball, y0] { return checksum(rb::hand_coded::rk4(ball, y0, kH, kSteps).data()); },
-                suite("rkmk4"),
-                [ball, y0] { return checksum(rb::hand_coded::rkmk4(ball, y0, kH, kSteps).data()); },
+               {suite("rk4"), [ball, y0] { return checksum(rb::hand_coded::rk4(ball, y0, kH, kSteps).data()); },
+                suite("rkmk4"), [ball, y0] { return checksum(rb::hand_coded::rkmk4(ball, y0, kH, kSteps).data()); },
                 suite("odeint-rk4"), suite("gsl-rk4")},
                {}};
   // The hand-coded peers must compute the same motion, or the ratio means
@@ -135,11 +133,13 @@ constexpr Ratio kRatios[] = {{"rk4_over_hand", 0, 1},
                              {"rkmk4_over_rk4", 2, 0}};
 
 void side_by_side(benchmark::State& state, const SceneBench* b) {
-  const std::vector<double> ns =
-      rb::bench::cpu_ns_in_rotation(state, kCount, [b](int i) { benchmark::DoNotOptimize(b->variants[static_cast<std::size_t>(i)]()); });
+  const std::vector<double> ns = rb::bench::cpu_ns_in_rotation(
+      state, kCount, [b](int i) { benchmark::DoNotOptimize(b->variants[static_cast<std::size_t>(i)]()); });
   const double steps = static_cast<double>(kSteps) * static_cast<double>(state.iterations());
-  for (int i = 0; i < kCount; ++i) state.counters[std::string(kVariantNames[i]) + "_ns"] = ns[static_cast<std::size_t>(i)] / steps;
-  for (const Ratio& r : kRatios) state.counters[r.counter] = ns[static_cast<std::size_t>(r.num)] / ns[static_cast<std::size_t>(r.den)];
+  for (int i = 0; i < kCount; ++i)
+    state.counters[std::string(kVariantNames[i]) + "_ns"] = ns[static_cast<std::size_t>(i)] / steps;
+  for (const Ratio& r : kRatios)
+    state.counters[r.counter] = ns[static_cast<std::size_t>(r.num)] / ns[static_cast<std::size_t>(r.den)];
 }
 
 // The console output plus a closing table of the side-by-side medians.
@@ -192,7 +192,8 @@ int main(int argc, char** argv) {
   // medians by default: 9 repetitions, aggregates only
   std::vector<char*> args(argv, argv + argc);
   const auto given = [&](const char* flag) {
-    return std::any_of(args.begin(), args.end(), [&](const char* a) { return std::strncmp(a, flag, std::strlen(flag)) == 0; });
+    return std::any_of(args.begin(), args.end(),
+                       [&](const char* a) { return std::strncmp(a, flag, std::strlen(flag)) == 0; });
   };
   static char repetitions[] = "--benchmark_repetitions=9";
   static char aggregates[] = "--benchmark_report_aggregates_only=true";

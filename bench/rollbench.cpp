@@ -57,8 +57,7 @@ int run_trajectory(const TrajectoryArgs& a) {
     throw rb::InputError("the end time must be a finite number > 0", "t-end");
   if (!std::isnan(a.dt_out) && !(a.dt_out > 0.0 && std::isfinite(a.dt_out)))
     throw rb::InputError("the output spacing must be a finite number > 0", "dt-out");
-  if (!integrator.adaptive() && !std::isfinite(a.h))
-    throw rb::InputError("the step must be a finite number > 0", "h");
+  if (!integrator.adaptive() && !std::isfinite(a.h)) throw rb::InputError("the step must be a finite number > 0", "h");
   options.t_end = std::isnan(a.t_end) ? problem.t_end() : a.t_end;
   options.h = a.h;
   options.rtol = a.rtol;
@@ -84,8 +83,7 @@ int run_trajectory(const TrajectoryArgs& a) {
   // a summary on standard output: how the run went and what it cost
   const rb::Drift drift = rb::largest_drift(problem, run.output);
   std::printf("%s on %s: %s at t = %.6g (%zu rows in %s)\n", integrator.name().c_str(), scene.name.c_str(),
-              std::string(rb::status_name(run.status)).c_str(), run.stop_time, run.output.t.size() + 1,
-              a.out.c_str());
+              std::string(rb::status_name(run.status)).c_str(), run.stop_time, run.output.t.size() + 1, a.out.c_str());
   std::printf("  steps %ld, rejected %ld, rhs evals %ld, controller %s\n", run.cost.steps, run.cost.rejected,
               run.cost.rhs_evals, rb::controller_of(integrator.controller(), options).c_str());
   std::printf("  max |energy error| %.3e, max rotation defect %.3e\n", drift.energy, drift.rotation_defect);
@@ -126,9 +124,9 @@ int run_landscape(const LandscapeArgs& a) {
   const std::vector<double> grid = parse_exact_numbers(a.grid, 2, "grid", "NX,NY (two integers)");
   for (double n : grid)
     if (n != std::floor(n) || n < 2 || n > max_points)
-      throw rb::InputError("each of NX,NY must be an integer from 2 to " + std::to_string(max_points) + ", got '" +
-                               a.grid + "'",
-                           "grid");
+      throw rb::InputError(
+          "each of NX,NY must be an integer from 2 to " + std::to_string(max_points) + ", got '" + a.grid + "'",
+          "grid");
   const rb::Scene scene = rb::load_scene(a.scene);
   rb::Domain box = scene.domain;
   if (!a.domain.empty()) {
@@ -248,8 +246,7 @@ int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_
   auto progress = [](const std::string& line) { std::fprintf(stderr, "rollbench: %s\n", line.c_str()); };
   progress("preparing scenes and references");
   const std::vector<rb::SweepScene> scenes = rb::prepare_scenes(spec, true, progress);
-  for (const rb::SweepScene& s : scenes)
-  {
+  for (const rb::SweepScene& s : scenes) {
     char error[32];
     std::snprintf(error, sizeof error, "%.2e", s.reference.error);
     progress("reference of " + s.scene.name + ": " + s.reference.kind + " (" + s.reference.method + "), own error " +
@@ -324,7 +321,9 @@ int main(int argc, char** argv) {
   // --tableau FILE, repeatable, on list, trajectory and run: one file per occurrence
   std::vector<std::string> tableau_files;
   auto add_tableau_option = [&](CLI::App* command) {
-    command->add_option("--tableau", tableau_files, "a Butcher tableau JSON file: adds rk-<name>, rkmk-<name> (repeatable)")
+    command
+        ->add_option("--tableau", tableau_files,
+                     "a Butcher tableau JSON file: adds rk-<name>, rkmk-<name> (repeatable)")
         ->allow_extra_args(false);
   };
 
@@ -356,7 +355,8 @@ int main(int argc, char** argv) {
   trajectory->add_option("--h", traj.h, "step size of a fixed-step method");
   trajectory->add_option("--rtol", traj.rtol, "relative tolerance of an adaptive method");
   trajectory->add_option("--atol", traj.atol, "absolute tolerance of an adaptive method");
-  trajectory->add_option("--dt-out", traj.dt_out, "spacing of the output rows, >= h (default: the larger of 0.01 and h)");
+  trajectory->add_option("--dt-out", traj.dt_out,
+                         "spacing of the output rows, >= h (default: the larger of 0.01 and h)");
   trajectory->add_option("--t-end", traj.t_end, "end time (default: the scene's t_end)");
   trajectory->add_option("--controller", traj.controller, controller_help);
   trajectory->add_option("--out", traj.out, "the CSV file to write")->required();

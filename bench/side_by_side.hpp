@@ -3,7 +3,6 @@
 // iteration runs every variant once, the first one rotating, so that clock
 // drift, frequency changes and cache order hit them alike.
 #include <benchmark/benchmark.h>
-
 #include <time.h>
 
 #include <vector>

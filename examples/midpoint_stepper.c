@@ -12,8 +12,8 @@
 #include "integrators/plugin/rollbench_stepper.h"
 
 static const struct rollbench_stepper_info info = {
-    "midpoint-plugin", "plugin", 2,
-    "explicit midpoint rule in C, loaded with --stepper (examples/midpoint_stepper.c)", ROLLBENCH_VIEW_FLAT};
+    "midpoint-plugin", "plugin", 2, "explicit midpoint rule in C, loaded with --stepper (examples/midpoint_stepper.c)",
+    ROLLBENCH_VIEW_FLAT};
 
 unsigned rollbench_stepper_abi_version(void) { return ROLLBENCH_STEPPER_ABI_VERSION; }
 

@@ -77,7 +77,7 @@ int rollbench_stepper_step(const struct rollbench_problem* problem, double t, do
                            const double y[ROLLBENCH_FLAT_SIZE], double y_next[ROLLBENCH_FLAT_SIZE], char* message,
                            size_t message_size) {
   double k[ROLLBENCH_FLAT_SIZE], mid[ROLLBENCH_FLAT_SIZE];
-  (void)t;  /* the variants that fail look at it */
+  (void)t; /* the variants that fail look at it */
 #ifdef RB_VARIANT_FAILS
   if (t >= 0.5) {
     snprintf(message, message_size, "the linear solve did not converge (residual %.1e)", 1e-3);

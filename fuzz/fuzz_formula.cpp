@@ -11,17 +11,15 @@
 // same points. The corpus itself is compiled in full by
 // tests/problems/test_formula_native.cpp.
 #include <Eigen/Core>
-#include <unsupported/Eigen/AutoDiff>
-
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <set>
 #include <string>
-
+#include <unsupported/Eigen/AutoDiff>
 
 #include "problems/formula.hpp"
 #include "problems/formula_codegen.hpp"

@@ -22,8 +22,8 @@ namespace {
 // the fixed-step loop of each family, an adaptive one of each library, and
 // an implicit one (the AD Jacobian); missing names are skipped, so the
 // registry may change under the fuzzer
-constexpr const char* kMethods[] = {"rk4",        "rkmk4",         "odeint-rk4",         "gsl-rkf45-adaptive",
-                                    "gsl-rk4imp", "odeint-dopri5-adaptive", "rkmk-dp54-adaptive"};
+constexpr const char* kMethods[] = {
+    "rk4", "rkmk4", "odeint-rk4", "gsl-rkf45-adaptive", "gsl-rk4imp", "odeint-dopri5-adaptive", "rkmk-dp54-adaptive"};
 constexpr double kMaxTime = 0.5;  // seconds of simulated time
 constexpr long kMaxSteps = 60;    // accepted + rejected steps
 constexpr double kTolerances[] = {1e-3, 1e-6, 1e-9, 1e-13, 1e-17};
@@ -39,8 +39,7 @@ std::uint64_t hash_of(const std::uint8_t* data, std::size_t size) {
   return h;
 }
 
-void check_run(const rb::Problem& problem, const rb::RunOptions& o, const std::string& name,
-               const rb::RunResult& r) {
+void check_run(const rb::Problem& problem, const rb::RunOptions& o, const std::string& name, const rb::RunResult& r) {
   const std::string_view status = rb::status_name(r.status);
   if (r.status != rb::Status::ok && r.message.empty()) fail(name, "stopped without a reason:", std::string(status));
   if (!(r.stop_time >= 0.0) || r.stop_time > o.t_end) fail(name, "stop_time outside [0, t_end]");
@@ -49,7 +48,8 @@ void check_run(const rb::Problem& problem, const rb::RunOptions& o, const std::s
   if (r.output.t.size() > o.output_times.size()) fail(name, "more rows than output times");
   double last = 0.0;
   for (std::size_t i = 0; i < r.output.t.size(); ++i) {
-    if (!(r.output.t[i] > last) || r.output.t[i] > r.stop_time) fail(name, "a row's time is out of order or after the stop");
+    if (!(r.output.t[i] > last) || r.output.t[i] > r.stop_time)
+      fail(name, "a row's time is out of order or after the stop");
     if (r.output.t[i] != o.output_times[i]) fail(name, "a row is not at its output time");
     if (!r.output.y[i].allFinite()) fail(name, "a kept row is not finite");
     last = r.output.t[i];

@@ -4,7 +4,6 @@
 
 namespace rb {
 
-
 std::vector<double> output_times_of(const Problem& problem, const RunOptions& options) {
   const double t_end = t_end_of(problem, options);
   if (!(t_end > 0.0) || !std::isfinite(t_end)) throw InputError("t_end must be a finite number > 0", "t_end");
@@ -12,8 +11,7 @@ std::vector<double> output_times_of(const Problem& problem, const RunOptions& op
   times.reserve(options.output_times.size() + 1);
   double last = 0.0;
   for (const double t : options.output_times) {
-    if (!(t > last) || t > t_end)
-      throw InputError("output times must increase within (0, t_end]", "output_times");
+    if (!(t > last) || t > t_end) throw InputError("output times must increase within (0, t_end]", "output_times");
     times.push_back(t);
     last = t;
   }
@@ -34,12 +32,9 @@ std::string stage_stop_reason(const Validity& v, double t, double h) {
   return v.reason + at;
 }
 
-
-
 Tolerances tolerances_of(const RunOptions& options) {
   auto check = [](double value, const char* key) {
-    if (!std::isfinite(value) || value < 0.0)
-      throw InputError("an adaptive method needs a finite tolerance >= 0", key);
+    if (!std::isfinite(value) || value < 0.0) throw InputError("an adaptive method needs a finite tolerance >= 0", key);
   };
   check(options.rtol, "rtol");
   check(options.atol, "atol");
@@ -71,8 +66,7 @@ double initial_step(const Problem& problem, const FlatState& y0, const Tolerance
                     Cost& cost) {
   // root-mean-square norm weighted by the tolerances
   // (kept above 0 so that atol = 0 with a zero component does not divide 0 by 0)
-  const FlatState scale =
-      (tol.atol + tol.rtol * y0.array().abs()).max(std::numeric_limits<double>::min()).matrix();
+  const FlatState scale = (tol.atol + tol.rtol * y0.array().abs()).max(std::numeric_limits<double>::min()).matrix();
   auto norm = [&](const FlatState& v) { return std::sqrt((v.array() / scale.array()).square().mean()); };
   FlatState f0, f1;
   problem.flat_rhs(y0.data(), f0.data());
@@ -90,7 +84,6 @@ double initial_step(const Problem& problem, const FlatState& y0, const Tolerance
   // a start where F is not finite gets a plain guess; the run reports it
   return std::isfinite(h) && h > 0.0 ? h : 1e-3 * span;
 }
-
 
 std::string controller_of(const std::string& method_default, const RunOptions& options) {
   if (options.controller.empty()) return method_default;

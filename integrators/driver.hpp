@@ -48,8 +48,7 @@ namespace rb {
 template <class StepFn>
 RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, StepFn&& step) {
   constexpr bool writes_next = std::is_invocable_v<StepFn&, const FlatState&, FlatState&, double, double, Cost&>;
-  if (!(options.h > 0.0) || !std::isfinite(options.h))
-    throw InputError("a fixed-step method needs a step h > 0", "h");
+  if (!(options.h > 0.0) || !std::isfinite(options.h)) throw InputError("a fixed-step method needs a step h > 0", "h");
   RunBook book(problem, options);
   Cost& cost = book.cost();
   // the state before the current one, the current one and the next,
@@ -129,7 +128,6 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
   if (const Validity v = book.check_model_at(*y, t); v.status != Status::ok) return stop_model(v);
   return book.finish(*y, t);
 }
-
 
 // ---- adaptive ----
 
@@ -233,7 +231,7 @@ inline constexpr double kLimitShrink = 0.25;
 template <class Stepper>
 RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int order, Stepper& stepper,
                          const std::string& controller_name = kLibraryController) {
-  constexpr bool estimates = requires(Stepper& s, Cost& c) { s.try_step(0.0, 0.0, c); };
+  constexpr bool estimates = requires(Stepper & s, Cost & c) { s.try_step(0.0, 0.0, c); };
   constexpr bool lands_itself = requires { requires Stepper::lands_itself; };
   const Tolerances tol = tolerances_of(options);
   RunBook book(problem, options);
@@ -259,17 +257,12 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
   // the start, by one evaluation (the steps' stages check every other state)
   if (const Validity v = book.check_model_at(y, t); v.status != Status::ok) return book.stop(v.status, v.reason, y, t);
   double h = 0.0;
-  if (options.h > 0.0)
-    h = options.h;
-  else if constexpr (lands_itself)
-    h = stepper.first_step(t_end);
-  else
-    h = initial_step(problem, y, tol, order, t_end, cost);
+  if (options.h > 0.0) h = options.h;
+  else if constexpr (lands_itself) h = stepper.first_step(t_end);
+  else h = initial_step(problem, y, tol, order, t_end, cost);
   auto make_controller = [&] {
-    if constexpr (estimates)
-      return FilterController(filter_controller(controller_name), stepper.error_order());
-    else
-      return FilterController(filter_controllers().front(), 1);  // unused
+    if constexpr (estimates) return FilterController(filter_controller(controller_name), stepper.error_order());
+    else return FilterController(filter_controllers().front(), 1);  // unused
   };
   [[maybe_unused]] FilterController controller = make_controller();
   // A step (of h_tried from y) refused for a stage beyond a limit

@@ -41,11 +41,11 @@ struct RunOptions {
 // Every member has a default, so that designated initializers may leave
 // any out.
 struct MethodInfo {
-  std::string name{};         // registry name, e.g. "rkmk4"
-  std::string family{};       // "rk", "rkmk", "odeint", "gsl", ...
+  std::string name{};    // registry name, e.g. "rkmk4"
+  std::string family{};  // "rk", "rkmk", "odeint", "gsl", ...
   int declared_order = 0;
-  int rotation_order = 0;     // the order in R; 0 at construction: the declared order
-  int embedded_order = 0;     // the order of an adaptive method's embedded estimate; 0: none or not stated
+  int rotation_order = 0;  // the order in R; 0 at construction: the declared order
+  int embedded_order = 0;  // the order of an adaptive method's embedded estimate; 0: none or not stated
   bool adaptive = false;
   bool needs_jacobian = false;
   std::string controller{};   // the default step-size controller: "constant", "library", "pi", ...
@@ -54,7 +54,7 @@ struct MethodInfo {
   // the Lie-group view both implement it (the analysis pairs methods of one
   // tableau and adaptivity, flat against Lie); empty: the method has no pair.
   std::string tableau{};
-  bool on_group = false;      // R stays on SO(3) by construction (a Lie-group method)
+  bool on_group = false;  // R stays on SO(3) by construction (a Lie-group method)
 };
 
 // Where the stages of the step being taken went beyond the model's limits
@@ -120,11 +120,11 @@ struct Trajectory {
 
 struct RunResult {
   Status status = Status::ok;
-  std::string message;     // why it stopped, empty when ok
-  double stop_time = 0.0;  // time of the last valid state
+  std::string message;                        // why it stopped, empty when ok
+  double stop_time = 0.0;                     // time of the last valid state
   FlatState final_state = FlatState::Zero();  // the last valid state
   Cost cost;
-  Trajectory output;       // every output up to the stop
+  Trajectory output;  // every output up to the stop
   // Seconds the integration took as measured where it ran, for a run made
   // in a child process (integrators/steppers/isolated_run.hpp), so that the
   // fork is not timed; NaN where the caller times the call itself.

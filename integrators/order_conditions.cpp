@@ -67,14 +67,12 @@ const std::vector<RootedTree>& rooted_trees() {
 }
 
 OrderConditionCheck check_order_conditions(int stages, std::span<const double> a, std::span<const double> w,
-                                           std::span<const double> c, int max_order, double theta,
-                                           double tolerance) {
+                                           std::span<const double> c, int max_order, double theta, double tolerance) {
   const auto s = static_cast<std::size_t>(stages);
   if (stages < 1 || a.size() != s * s || w.size() != s || c.size() != s)
     throw std::invalid_argument("check_order_conditions: a must be s x s, w and c of size s");
   if (max_order < 1 || max_order > kMaxConditionOrder)
-    throw std::invalid_argument("check_order_conditions: max_order must be 1 to " +
-                                std::to_string(kMaxConditionOrder));
+    throw std::invalid_argument("check_order_conditions: max_order must be 1 to " + std::to_string(kMaxConditionOrder));
   const std::vector<RootedTree>& trees = rooted_trees();
   // per tree t: Phi_i(t) at each stage, and (A Phi(t))_i, the factor t
   // contributes to a parent's Phi_i (c_i for t = tau)

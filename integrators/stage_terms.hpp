@@ -14,9 +14,9 @@ namespace rb {
 // zeros without testing them and read no std::vector in the step.
 struct StageTerms {
   struct Row {
-    int count = 0;                          // non-zero terms
-    std::array<int, kMaxStages> index{};    // j of each term, increasing
-    std::array<double, kMaxStages> coeff{}; // a_ij (or b_j) of each term
+    int count = 0;                           // non-zero terms
+    std::array<int, kMaxStages> index{};     // j of each term, increasing
+    std::array<double, kMaxStages> coeff{};  // a_ij (or b_j) of each term
     void add(int j, double value) {
       if (value == 0.0) return;
       index[static_cast<std::size_t>(count)] = j;
@@ -74,7 +74,8 @@ struct StageTerms {
     [[gnu::always_inline]] void scalar_sum(V& out, const V* base, double h, const K& k) const {
       switch (count) {
         case 0:
-          if constexpr (Base) out = *base; else out.setZero();
+          if constexpr (Base) out = *base;
+          else out.setZero();
           break;
         case 1: terms<1, Base>(out, base, h, k); break;
         case 2: terms<2, Base>(out, base, h, k); break;

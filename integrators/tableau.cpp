@@ -25,8 +25,8 @@ void check_finite(const std::vector<double>& v, const char* what, const char* ke
 // The order conditions of weights w (b, or an embedded member) up to
 // order; subject names them in the message ("tableau 'x'" declares, "the
 // embedded weights ..." declare).
-void check_conditions(const TableauCoefficients& k, const std::vector<double>& w, int order,
-                      const std::string& subject, bool plural, const char* key) {
+void check_conditions(const TableauCoefficients& k, const std::vector<double>& w, int order, const std::string& subject,
+                      bool plural, const char* key) {
   if (order < 1) throw InputError(subject + ": the declared order must be >= 1", key);
   if (order > kMaxConditionOrder)
     throw InputError("order conditions are checked up to order " + std::to_string(kMaxConditionOrder) +
@@ -90,8 +90,8 @@ Tableau::Tableau(TableauCoefficients coefficients) : k_(std::move(coefficients))
     double row = 0.0;
     for (std::size_t j = 0; j < s; ++j) {
       if (j >= i && k_.a[i * s + j] != 0.0)
-        throw InputError("A must be strictly lower triangular for an explicit method (a[" + std::to_string(i) +
-                             "][" + std::to_string(j) + "] != 0)",
+        throw InputError("A must be strictly lower triangular for an explicit method (a[" + std::to_string(i) + "][" +
+                             std::to_string(j) + "] != 0)",
                          "a");
       row += k_.a[i * s + j];
     }

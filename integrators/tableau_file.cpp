@@ -4,10 +4,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
-
-#include <nlohmann/json.hpp>
 
 #include "integrators/order_conditions.hpp"
 #include "problems/input_error.hpp"
@@ -94,9 +93,8 @@ std::vector<std::vector<double>> square_at(const json& v, const std::string& key
 int integer_at(const json& v, const std::string& key, int lo, int hi) {
   const double x = number_at(v, key, key);
   if (x != std::floor(x) || x < lo || x > hi)
-    throw InputError("must be an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ", not " +
-                         v.dump(),
-                     key);
+    throw InputError(
+        "must be an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ", not " + v.dump(), key);
   return static_cast<int>(x);
 }
 
@@ -175,8 +173,8 @@ Tableau make_tableau(const std::string& name, const std::optional<int>& order, c
 // b_err against its conditions; err_order, when not given, is the highest that holds.
 int check_embedded(const Coefficients& k, const std::vector<double>& b_err, const std::optional<int>& err_order) {
   if (b_err == k.b) throw InputError("equals b: the error estimate b - b_err would be zero", "b_err");
-  const OrderConditionCheck check =
-      check_order_conditions(k.stages(), k.a, b_err, k.c, err_order.value_or(kMaxConditionOrder), 1.0, k.order_tolerance);
+  const OrderConditionCheck check = check_order_conditions(
+      k.stages(), k.a, b_err, k.c, err_order.value_or(kMaxConditionOrder), 1.0, k.order_tolerance);
   if (err_order && check.failure)
     throw InputError("the embedded weights declare err_order " + std::to_string(*err_order) +
                          " but satisfy the order conditions only to order " + std::to_string(check.satisfied_order) +
@@ -194,9 +192,9 @@ TableauFile read_tableau(const json& doc, const std::string& path) {
       throw InputError("unknown key (known: " + list_of(kKnownKeys) + ")", item.key());
   if (!doc.contains("name")) throw InputError("missing required key", "name");
   if (!doc["name"].is_string() || !registry_safe(doc["name"].get<std::string>()))
-    throw InputError("must be a string of 1 to 40 letters, digits, '-', '_' or '.' (it names rk-<name>), not " +
-                         doc["name"].dump(),
-                     "name");
+    throw InputError(
+        "must be a string of 1 to 40 letters, digits, '-', '_' or '.' (it names rk-<name>), not " + doc["name"].dump(),
+        "name");
   const std::string name = doc["name"].get<std::string>();
   std::optional<int> order, err_order;
   if (doc.contains("order")) order = integer_at(doc["order"], "order", 1, kMaxConditionOrder);
@@ -228,7 +226,8 @@ TableauFile read_tableau(const json& doc, const std::string& path) {
     throw InputError("goes with b_err, which the file does not give", "err_order");
   }
   if (doc.contains("source")) {
-    if (!doc["source"].is_string()) throw InputError(std::string("must be a string, not ") + doc["source"].type_name(), "source");
+    if (!doc["source"].is_string())
+      throw InputError(std::string("must be a string, not ") + doc["source"].type_name(), "source");
     full.source = doc["source"].get<std::string>();
   }
   try {
@@ -251,7 +250,8 @@ TableauFile parse_tableau_file(std::string_view text, const std::string& path) {
 
 TableauFile load_tableau_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path)) throw InputError("cannot read the tableau file '" + path + "'", "tableau");
+  if (!in || std::filesystem::is_directory(path))
+    throw InputError("cannot read the tableau file '" + path + "'", "tableau");
   std::ostringstream text;
   text << in.rdbuf();
   return parse_tableau_file(text.str(), path);

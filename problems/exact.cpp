@@ -1,13 +1,13 @@
 #include "problems/exact.hpp"
 
+#include <gsl/gsl_mode.h>
+#include <gsl/gsl_sf_ellint.h>
+#include <gsl/gsl_sf_elljac.h>
+
 #include <array>
 #include <cmath>
 #include <initializer_list>
 #include <sstream>
-
-#include <gsl/gsl_mode.h>
-#include <gsl/gsl_sf_ellint.h>
-#include <gsl/gsl_sf_elljac.h>
 
 #include "problems/input_error.hpp"
 #include "problems/so3.hpp"
@@ -173,28 +173,29 @@ std::shared_ptr<const ExactSolution> make_exact(const Scene& scene, const Rollin
   const Mat3 R0 = start_rotation(scene);
 
   if (name == "plane") {
-    expect_landscape(model, sample_points(1.0, a0), [](double, double) { return std::array<double, 6>{}; },
-                     "the plane f = 0");
+    expect_landscape(
+        model, sample_points(1.0, a0), [](double, double) { return std::array<double, 6>{}; }, "the plane f = 0");
     return std::make_shared<PlaneSolution>(r, a0, omega0, R0);
   }
   if (name == "incline") {
     const double s = required_param(scene, "s", "the slope of f = -s*y");
-    expect_landscape(model, sample_points(1.0, a0),
-                     [s](double, double y) { return std::array<double, 6>{-s * y, 0.0, -s, 0.0, 0.0, 0.0}; },
-                     "the incline f = -s*y with s = " + num(s));
+    expect_landscape(
+        model, sample_points(1.0, a0),
+        [s](double, double y) { return std::array<double, 6>{-s * y, 0.0, -s, 0.0, 0.0, 0.0}; },
+        "the incline f = -s*y with s = " + num(s));
     return std::make_shared<InclineSolution>(s, r, g0, a0, omega0, R0);
   }
   if (name == "bowl-pendulum") {
     const double rho = required_param(scene, "rho", "the radius of the bowl f = rho - sqrt(rho^2 - x^2 - y^2)");
     if (!(rho > r)) throw InputError("the bowl's radius rho = " + num(rho) + " must exceed the ball's", "exact");
     if (!(a0.norm() < rho)) throw InputError("the start contact lies outside the bowl", "exact");
-    expect_landscape(model, sample_points(0.9 * rho / std::sqrt(2.0), a0),
-                     [rho](double x, double y) {
-                       const double g = std::sqrt(rho * rho - x * x - y * y), g3 = g * g * g;
-                       return std::array<double, 6>{rho - g,  x / g, y / g, 1.0 / g + x * x / g3, x * y / g3,
-                                                    1.0 / g + y * y / g3};
-                     },
-                     "the spherical bowl f = rho - sqrt(rho^2 - x^2 - y^2) with rho = " + num(rho));
+    expect_landscape(
+        model, sample_points(0.9 * rho / std::sqrt(2.0), a0),
+        [rho](double x, double y) {
+          const double g = std::sqrt(rho * rho - x * x - y * y), g3 = g * g * g;
+          return std::array<double, 6>{rho - g, x / g, y / g, 1.0 / g + x * x / g3, x * y / g3, 1.0 / g + y * y / g3};
+        },
+        "the spherical bowl f = rho - sqrt(rho^2 - x^2 - y^2) with rho = " + num(rho));
     if (omega0.norm() != 0.0)
       throw InputError("'bowl-pendulum' starts at rest; the start's omega (or velocity and spin) must be 0", "exact");
     return std::make_shared<BowlPendulumSolution>(rho, r, g0, a0, R0);

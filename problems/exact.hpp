@@ -60,9 +60,9 @@ class BowlPendulumSolution final : public ExactSolution {
   ExactState at(double t) const override;
 
   double theta0() const { return theta0_; }
-  double theta(double t) const;      // polar angle of the contact (and the centre), signed along e
-  double theta_dot(double t) const;  // its rate, 1/s
-  double period() const;             // 4 K(k) / w0, s (infinite when g0 = 0)
+  double theta(double t) const;                 // polar angle of the contact (and the centre), signed along e
+  double theta_dot(double t) const;             // its rate, 1/s
+  double period() const;                        // 4 K(k) / w0, s (infinite when g0 = 0)
   const Vec2& direction() const { return e_; }  // e, the unit swing direction in the (x, y) plane
 
  private:

@@ -12,14 +12,14 @@
 //     where that gives the same bits: (-a) * c == a * (-c) in IEEE
 //     arithmetic.
 // formula_tape.cpp then orders the instructions and allocates registers.
+#include "problems/formula.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <map>
 #include <optional>
 #include <tuple>
 #include <utility>
-
-#include "problems/formula.hpp"
 
 namespace rb {
 namespace {
@@ -213,9 +213,7 @@ Sym tanh(const Sym& u) { return apply<tanh_d>(TapeCode::tanh, u); }
 Sym exp(const Sym& u) { return apply<exp_d>(TapeCode::exp, u); }
 Sym log(const Sym& u) { return apply<log_d>(TapeCode::log, u); }
 Sym sqrt(const Sym& u) { return apply<sqrt_d>(TapeCode::sqrt, u); }
-Sym pow(const Sym& a, const Sym& b) {
-  return apply2<pow_d>(TapeCode::pow, TapeCode::pow_c, TapeCode::rpow_c, a, b);
-}
+Sym pow(const Sym& a, const Sym& b) { return apply2<pow_d>(TapeCode::pow, TapeCode::pow_c, TapeCode::rpow_c, a, b); }
 Sym pow(const Sym& a, double c) { return pow(a, numeric(c)); }
 Sym pow(double c, const Sym& b) { return pow(numeric(c), b); }
 Sym atan2(const Sym& a, const Sym& b) {

@@ -30,15 +30,41 @@ namespace rb {
 
 enum class OpCode : std::uint8_t {
   // push a constant (c), x or y
-  push_const, push_x, push_y,
+  push_const,
+  push_x,
+  push_y,
   // pop b, pop a, push a op b
-  add, sub, mul, div, pow, atan2, hypot,
+  add,
+  sub,
+  mul,
+  div,
+  pow,
+  atan2,
+  hypot,
   // replace the top u: -u, u + c, c - u, u * c, u / c, c / u,
   // u^c (real c), u^n (integer n), c^u
-  neg, add_const, rsub_const, mul_const, div_const, rdiv_const,
-  pow_const, pow_int, rpow_const,
+  neg,
+  add_const,
+  rsub_const,
+  mul_const,
+  div_const,
+  rdiv_const,
+  pow_const,
+  pow_int,
+  rpow_const,
   // replace the top u by g(u)
-  sin, cos, tan, asin, acos, atan, sinh, cosh, tanh, exp, log, sqrt,
+  sin,
+  cos,
+  tan,
+  asin,
+  acos,
+  atan,
+  sinh,
+  cosh,
+  tanh,
+  exp,
+  log,
+  sqrt,
 };
 
 struct Op {
@@ -63,7 +89,8 @@ inline double powi_value(double u, int n) {
 [[gnu::always_inline]] inline double value_op(const Op& op, double a, double b) {
   switch (op.code) {
     case OpCode::push_const: return op.c;
-    case OpCode::push_x: case OpCode::push_y: break;
+    case OpCode::push_x:
+    case OpCode::push_y: break;
     case OpCode::add: return a + b;
     case OpCode::sub: return a - b;
     case OpCode::mul: return a * b;
@@ -215,13 +242,34 @@ Jet2<T> Formula::run(const T& x, const T& y) const {
       case OpCode::push_const: s[top++] = J::constant(T(op.c)); break;
       case OpCode::push_x: s[top++] = J::variable_x(x); break;
       case OpCode::push_y: s[top++] = J::variable_y(y); break;
-      case OpCode::add: --top; s[top - 1] = s[top - 1] + s[top]; break;
-      case OpCode::sub: --top; s[top - 1] = s[top - 1] - s[top]; break;
-      case OpCode::mul: --top; s[top - 1] = s[top - 1] * s[top]; break;
-      case OpCode::div: --top; s[top - 1] = s[top - 1] / s[top]; break;
-      case OpCode::pow: --top; s[top - 1] = pow(s[top - 1], s[top]); break;
-      case OpCode::atan2: --top; s[top - 1] = atan2(s[top - 1], s[top]); break;
-      case OpCode::hypot: --top; s[top - 1] = hypot(s[top - 1], s[top]); break;
+      case OpCode::add:
+        --top;
+        s[top - 1] = s[top - 1] + s[top];
+        break;
+      case OpCode::sub:
+        --top;
+        s[top - 1] = s[top - 1] - s[top];
+        break;
+      case OpCode::mul:
+        --top;
+        s[top - 1] = s[top - 1] * s[top];
+        break;
+      case OpCode::div:
+        --top;
+        s[top - 1] = s[top - 1] / s[top];
+        break;
+      case OpCode::pow:
+        --top;
+        s[top - 1] = pow(s[top - 1], s[top]);
+        break;
+      case OpCode::atan2:
+        --top;
+        s[top - 1] = atan2(s[top - 1], s[top]);
+        break;
+      case OpCode::hypot:
+        --top;
+        s[top - 1] = hypot(s[top - 1], s[top]);
+        break;
       case OpCode::neg: u = -u; break;
       case OpCode::add_const: u = u + op.c; break;
       case OpCode::rsub_const: u = op.c - u; break;
@@ -257,8 +305,13 @@ double Formula::run_value(double x, double y) const {
       case OpCode::push_const: s[top++] = op.c; break;
       case OpCode::push_x: s[top++] = x; break;
       case OpCode::push_y: s[top++] = y; break;
-      case OpCode::add: case OpCode::sub: case OpCode::mul: case OpCode::div:
-      case OpCode::pow: case OpCode::atan2: case OpCode::hypot:
+      case OpCode::add:
+      case OpCode::sub:
+      case OpCode::mul:
+      case OpCode::div:
+      case OpCode::pow:
+      case OpCode::atan2:
+      case OpCode::hypot:
         --top;
         s[top - 1] = formula_detail::value_op(op, s[top - 1], s[top]);
         break;

@@ -61,7 +61,8 @@ std::string expression(const TapeOp& op, const std::string& a) {
     case TapeCode::exp: return call("exp", a);
     case TapeCode::log: return call("log", a);
     case TapeCode::sqrt: return call("sqrt", a);
-    case TapeCode::sincos: case TapeCode::cossin: break;
+    case TapeCode::sincos:
+    case TapeCode::cossin: break;
   }
   return "0.0 / 0.0";  // not reached: sincos is written by function_source
 }
@@ -80,8 +81,8 @@ std::string function_source(const TapeProgram& p, const char* name) {
     const std::string a = op.chained ? "last" : reg(op.a);
     if (op.code == TapeCode::sincos || op.code == TapeCode::cossin) {
       const bool cos_first = op.code == TapeCode::cossin;
-      s += "  { double s, c; __builtin_sincos(" + a + ", &s, &c); d = " + (cos_first ? "c" : "s") + "; " +
-           reg(op.b) + " = " + (cos_first ? "s" : "c") + "; }\n";
+      s += "  { double s, c; __builtin_sincos(" + a + ", &s, &c); d = " + (cos_first ? "c" : "s") + "; " + reg(op.b) +
+           " = " + (cos_first ? "s" : "c") + "; }\n";
     } else {
       s += "  d = " + expression(op, a) + ";\n";
     }

@@ -43,7 +43,7 @@ namespace {
 #endif
 
 // no contraction: a fused multiply-add would round differently from the tape
-const std::vector<std::string> kFlags = {"-O2", "-fPIC", "-shared", "-ffp-contract=off", "-fno-math-errno",
+const std::vector<std::string> kFlags = {"-O2",          "-fPIC", "-shared", "-ffp-contract=off", "-fno-math-errno",
                                          RB_NATIVE_MARCH};
 
 // names the entry's file only: the HMAC, not this hash, authenticates it
@@ -214,8 +214,8 @@ NativeResult compile_native(const FormulaTape& tape, const NativeSettings& setti
   if (identity.empty()) return {{}, NativeOutcome::unavailable, "no C compiler '" + settings.compiler + "'"};
 
   const std::string source = formula_c_source(tape);
-  std::string key = "rollbench native formula, generator " + std::to_string(kFormulaCodegenVersion) +
-                    "\ncompiler " + settings.compiler + ": " + identity + "flags";
+  std::string key = "rollbench native formula, generator " + std::to_string(kFormulaCodegenVersion) + "\ncompiler " +
+                    settings.compiler + ": " + identity + "flags";
   for (const std::string& f : kFlags) key += " " + f;
   key += "\n" + source;
 

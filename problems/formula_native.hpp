@@ -48,9 +48,9 @@ struct NativeSettings {
 enum class NativeOutcome { cached, built, disabled, unavailable };
 
 struct NativeResult {
-  NativeFormula code;     // empty unless cached or built
+  NativeFormula code;  // empty unless cached or built
   NativeOutcome outcome;
-  std::string why;        // for disabled and unavailable: why, for the one line
+  std::string why;  // for disabled and unavailable: why, for the one line
 };
 
 // The native code for a usable tape (tape.usable()); never throws.

@@ -23,11 +23,20 @@ struct FunctionInfo {
 };
 
 constexpr std::array<FunctionInfo, 14> kFunctions = {{
-    {"sin", OpCode::sin, 1},   {"cos", OpCode::cos, 1},     {"tan", OpCode::tan, 1},
-    {"asin", OpCode::asin, 1}, {"acos", OpCode::acos, 1},   {"atan", OpCode::atan, 1},
-    {"sinh", OpCode::sinh, 1}, {"cosh", OpCode::cosh, 1},   {"tanh", OpCode::tanh, 1},
-    {"exp", OpCode::exp, 1},   {"log", OpCode::log, 1},     {"sqrt", OpCode::sqrt, 1},
-    {"atan2", OpCode::atan2, 2}, {"hypot", OpCode::hypot, 2},
+    {"sin", OpCode::sin, 1},
+    {"cos", OpCode::cos, 1},
+    {"tan", OpCode::tan, 1},
+    {"asin", OpCode::asin, 1},
+    {"acos", OpCode::acos, 1},
+    {"atan", OpCode::atan, 1},
+    {"sinh", OpCode::sinh, 1},
+    {"cosh", OpCode::cosh, 1},
+    {"tanh", OpCode::tanh, 1},
+    {"exp", OpCode::exp, 1},
+    {"log", OpCode::log, 1},
+    {"sqrt", OpCode::sqrt, 1},
+    {"atan2", OpCode::atan2, 2},
+    {"hypot", OpCode::hypot, 2},
 }};
 
 // Rejected because the equations of motion need f in C^2; each with a
@@ -64,8 +73,10 @@ struct NamedValue {
   double value = 0.0;
 };
 constexpr std::array<NamedValue, 4> kNamedValues = {{
-    {"x", OpCode::push_x}, {"y", OpCode::push_y},
-    {"pi", OpCode::push_const, std::numbers::pi}, {"e", OpCode::push_const, std::numbers::e},
+    {"x", OpCode::push_x},
+    {"y", OpCode::push_y},
+    {"pi", OpCode::push_const, std::numbers::pi},
+    {"e", OpCode::push_const, std::numbers::e},
 }};
 const NamedValue* find_named_value(std::string_view name) { return find_in(kNamedValues, name); }
 
@@ -230,10 +241,8 @@ class Compiler {
     const std::string lower = lowercase(name);
     if (lower != name && (find_function(lower) || find_named_value(lower)))
       message += "; names are case-sensitive: did you mean '" + lower + "'?";
-    else if (call)
-      message += "; the functions are " + names_of(kFunctions, " ");
-    else
-      message += "; a formula knows " + names_of(kNamedValues, ", ") + known_params();
+    else if (call) message += "; the functions are " + names_of(kFunctions, " ");
+    else message += "; a formula knows " + names_of(kNamedValues, ", ") + known_params();
     fail(message, name_tok);
   }
 
@@ -301,14 +310,10 @@ class Compiler {
         case OpCode::mul: emit({OpCode::mul_const, 0, c}); break;
         case OpCode::div: emit({OpCode::div_const, 0, c}); break;
         case OpCode::pow:
-          if (c == std::trunc(c) && std::abs(c) <= kMaxIntExponent)
-            emit({OpCode::pow_int, static_cast<int>(c), c});
-          else
-            emit({OpCode::pow_const, 0, c});
+          if (c == std::trunc(c) && std::abs(c) <= kMaxIntExponent) emit({OpCode::pow_int, static_cast<int>(c), c});
+          else emit({OpCode::pow_const, 0, c});
           break;
-        default:
-          emit({OpCode::push_const, 0, c});
-          emit({code});
+        default: emit({OpCode::push_const, 0, c}); emit({code});
       }
       return a;
     }
@@ -361,18 +366,19 @@ void check_formula_param_name(std::string_view name) {
                      " is not a name: use letters, digits and '_', starting with a letter or '_'");
   if (find_named_value(name) || find_function(name) || find_non_smooth(name))
     throw InputError("param " + quoted(name) + " shadows a name of the formula language (" +
-                     names_of(kNamedValues, " ") + " " + names_of(kFunctions, " ") + " " +
-                     names_of(kNonSmooth, " ") + "); rename it");
+                     names_of(kNamedValues, " ") + " " + names_of(kFunctions, " ") + " " + names_of(kNonSmooth, " ") +
+                     "); rename it");
 }
 
 Formula::Formula() : text_("0"), program_{Op{OpCode::push_const, 0, 0.0}}, max_stack_(1) { lower_to_tape(); }
 
 Formula Formula::parse(std::string_view text, const std::map<std::string, double>& params) {
   if (text.size() > kMaxLength)
-    throw InputError("formula is " + std::to_string(text.size()) + " characters long; the limit is " +
-                         std::to_string(kMaxLength),
-                     "", static_cast<int>(kMaxLength + 1));
-  if (text.find_first_not_of(formula_detail::kSpace) == std::string_view::npos) throw InputError("empty formula", "", 1);
+    throw InputError(
+        "formula is " + std::to_string(text.size()) + " characters long; the limit is " + std::to_string(kMaxLength),
+        "", static_cast<int>(kMaxLength + 1));
+  if (text.find_first_not_of(formula_detail::kSpace) == std::string_view::npos)
+    throw InputError("empty formula", "", 1);
   check_params(params);
 
   Formula f;

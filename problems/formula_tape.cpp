@@ -1,11 +1,11 @@
 // Scheduling and register allocation of a FormulaTape (formula_tape.hpp):
 // from the SSA instructions that the lowering in formula.cpp records to the
 // straight-line TapeProgram that eval and slopes run.
+#include "problems/formula_tape.hpp"
+
 #include <algorithm>
 #include <map>
 #include <utility>
-
-#include "problems/formula_tape.hpp"
 
 namespace rb {
 namespace {
@@ -15,10 +15,16 @@ namespace {
 // Rough latencies in cycles, to tell which operand of an op is ready last.
 int latency(TapeCode code) {
   switch (code) {
-    case TapeCode::add: case TapeCode::sub: case TapeCode::mul: case TapeCode::add_c: case TapeCode::mul_c:
-    case TapeCode::rsub_c: case TapeCode::neg:
-      return 3;
-    case TapeCode::div: case TapeCode::div_c: case TapeCode::rdiv_c: return 13;
+    case TapeCode::add:
+    case TapeCode::sub:
+    case TapeCode::mul:
+    case TapeCode::add_c:
+    case TapeCode::mul_c:
+    case TapeCode::rsub_c:
+    case TapeCode::neg: return 3;
+    case TapeCode::div:
+    case TapeCode::div_c:
+    case TapeCode::rdiv_c: return 13;
     case TapeCode::sqrt: return 20;
     default: return 60;  // a libm call
   }
@@ -49,8 +55,9 @@ Schedule schedule(const std::vector<TapeNode>& nodes, const std::array<int, 6>& 
   std::vector<int> depth(n + 2, 0);              // of each value, in cycles
   for (std::size_t i = 0; i < n; ++i) {
     const TapeNode& node = nodes[i];
-    depth[i + 2] = std::max(depth[static_cast<std::size_t>(node.a)], node.b >= 0 ? depth[static_cast<std::size_t>(node.b)] : 0) +
-                   latency(node.code);
+    depth[i + 2] =
+        std::max(depth[static_cast<std::size_t>(node.a)], node.b >= 0 ? depth[static_cast<std::size_t>(node.b)] : 0) +
+        latency(node.code);
     if (node.code != TapeCode::sin && node.code != TapeCode::cos) continue;
     const TapeCode other = node.code == TapeCode::sin ? TapeCode::cos : TapeCode::sin;
     const auto found = trig.find({other, node.a});

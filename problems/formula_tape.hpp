@@ -12,9 +12,10 @@
 // Why: the stack machine moves whole jets (six doubles) through memory for
 // every op and does the full jet arithmetic; on the valley scene this tape
 // takes the formula from about 45 % to about 15 % of a right-hand side.
+#include <math.h>  // sincos (glibc, _GNU_SOURCE), for clang
+
 #include <array>
 #include <cmath>
-#include <math.h>  // sincos (glibc, _GNU_SOURCE), for clang
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -28,10 +29,39 @@ namespace rb {
 // reads a register a; sincos writes sin to dst and cos to b, cossin the
 // other way round.
 enum class TapeCode : std::uint8_t {
-  add, sub, mul, div, pow, atan2, hypot,  // r[a] op r[b]
-  add_c, mul_c, div_c, pow_c, atan2_c, hypot_c,  // r[a] op c
-  rsub_c, rdiv_c, rpow_c, ratan2_c, rhypot_c,    // c op r[a]
-  neg, sin, cos, sincos, cossin, tan, asin, acos, atan, sinh, cosh, tanh, exp, log, sqrt,
+  add,
+  sub,
+  mul,
+  div,
+  pow,
+  atan2,
+  hypot,  // r[a] op r[b]
+  add_c,
+  mul_c,
+  div_c,
+  pow_c,
+  atan2_c,
+  hypot_c,  // r[a] op c
+  rsub_c,
+  rdiv_c,
+  rpow_c,
+  ratan2_c,
+  rhypot_c,  // c op r[a]
+  neg,
+  sin,
+  cos,
+  sincos,
+  cossin,
+  tan,
+  asin,
+  acos,
+  atan,
+  sinh,
+  cosh,
+  tanh,
+  exp,
+  log,
+  sqrt,
 };
 
 struct TapeOp {
@@ -133,10 +163,10 @@ class TapeProgram {
   }
 
  private:
-  friend std::optional<TapeProgram> build_tape(const std::vector<TapeNode>& nodes,
-                                               const std::array<int, 6>& outputs, const Jet2<double>& constants);
+  friend std::optional<TapeProgram> build_tape(const std::vector<TapeNode>& nodes, const std::array<int, 6>& outputs,
+                                               const Jet2<double>& constants);
   std::vector<TapeOp> ops_;
-  std::array<int, 6> out_{};  // where f, fx, fy, fxx, fxy, fyy are: a register, kConstant or kLast
+  std::array<int, 6> out_{};      // where f, fx, fy, fxx, fxy, fyy are: a register, kConstant or kLast
   std::uint8_t first_input_ = 0;  // the input (0: x, 1: y) the first op reads
   Jet2<double> constant_parts_{};
 };

@@ -159,7 +159,9 @@ struct Jet2 {
     const T q = a.f / b.f;
     const T qx = (a.fx - q * b.fx) * inv;
     const T qy = (a.fy - q * b.fy) * inv;
-    return {q, qx, qy,
+    return {q,
+            qx,
+            qy,
             (a.fxx - T(2.0) * qx * b.fx - q * b.fxx) * inv,
             (a.fxy - qx * b.fy - qy * b.fx - q * b.fxy) * inv,
             (a.fyy - T(2.0) * qy * b.fy - q * b.fyy) * inv};
@@ -196,8 +198,7 @@ struct Jet2 {
       return chain(r, g, -g * g, T(2.0) * g * g * g);
     }
     const unsigned m = static_cast<unsigned>(n);
-    return chain(u, ipow(u.f, m), double(n) * ipow(u.f, m - 1),
-                 double(n) * double(n - 1) * ipow(u.f, m - 2));
+    return chain(u, ipow(u.f, m), double(n) * ipow(u.f, m - 1), double(n) * double(n - 1) * ipow(u.f, m - 2));
   }
   // u^c, constant real c.
   friend Jet2 pow(const Jet2& u, double c) {
@@ -294,7 +295,9 @@ struct Jet2 {
     const T ty = (b.f * a.fy - a.f * b.fy) * inv;
     const T dx = T(2.0) * (a.f * a.fx + b.f * b.fx);
     const T dy = T(2.0) * (a.f * a.fy + b.f * b.fy);
-    return {jet_detail::atan2_of(a.f, b.f), tx, ty,
+    return {jet_detail::atan2_of(a.f, b.f),
+            tx,
+            ty,
             (b.f * a.fxx - a.f * b.fxx - tx * dx) * inv,
             (b.fy * a.fx + b.f * a.fxy - a.fy * b.fx - a.f * b.fxy - tx * dy) * inv,
             (b.f * a.fyy - a.f * b.fyy - ty * dy) * inv};
@@ -306,7 +309,9 @@ struct Jet2 {
     const T inv = T(1.0) / h;
     const T hx = (a.f * a.fx + b.f * b.fx) * inv;
     const T hy = (a.f * a.fy + b.f * b.fy) * inv;
-    return {h, hx, hy,
+    return {h,
+            hx,
+            hy,
             (a.fx * a.fx + a.f * a.fxx + b.fx * b.fx + b.f * b.fxx - hx * hx) * inv,
             (a.fx * a.fy + a.f * a.fxy + b.fx * b.fy + b.f * b.fxy - hx * hy) * inv,
             (a.fy * a.fy + a.f * a.fyy + b.fy * b.fy + b.f * b.fyy - hy * hy) * inv};

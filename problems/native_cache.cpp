@@ -69,7 +69,8 @@ std::string distrust(const struct stat& st, const std::string& what, Trust trust
     return what + " is owned by uid " + std::to_string(st.st_uid) + ", not by this user (uid " +
            std::to_string(geteuid()) + ")";
   if (trust == Trust::own_output) return {};
-  if (st.st_mode & (S_IWGRP | S_IWOTH)) return what + " is writable by group or others (mode " + octal_mode(st.st_mode) + ")";
+  if (st.st_mode & (S_IWGRP | S_IWOTH))
+    return what + " is writable by group or others (mode " + octal_mode(st.st_mode) + ")";
   if (trust == Trust::secret && (st.st_mode & (S_IRWXG | S_IRWXO)))
     return what + " has mode " + octal_mode(st.st_mode) + "; a secret must be 0600";
   return {};
@@ -114,7 +115,8 @@ EntryRead read_checked(const CacheFolder& folder, const std::string& name, std::
   const UniqueFd fd(::openat(folder.fd.get(), name.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC | O_NONBLOCK));
   if (!fd) {
     if (errno == ENOENT) return EntryRead::missing;
-    why = what + (errno == ELOOP ? " is a symbolic link" : std::string(" cannot be opened (") + std::strerror(errno) + ")");
+    why = what +
+          (errno == ELOOP ? " is a symbolic link" : std::string(" cannot be opened (") + std::strerror(errno) + ")");
     return EntryRead::refused;
   }
   struct stat st {};
@@ -255,8 +257,8 @@ PrivateFile create_private_file(const CacheFolder& folder, const std::string& pr
     const std::string random = random_hex(8);
     if (random.empty()) break;
     PrivateFile file{UniqueFd(), prefix + random + suffix};
-    file.fd = UniqueFd(::openat(folder.fd.get(), file.name.c_str(),
-                                O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600));
+    file.fd = UniqueFd(
+        ::openat(folder.fd.get(), file.name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600));
     if (file.fd) return file;
     if (errno != EEXIST) break;
   }

@@ -21,9 +21,8 @@ Validity Problem::check_step(const FlatState& y) const {
   if (!domain_.contains(y[kOffsetAlpha], y[kOffsetAlpha + 1])) {
     std::ostringstream s;
     s.precision(6);
-    s << "the contact point (" << y[kOffsetAlpha] << ", " << y[kOffsetAlpha + 1]
-      << ") left the domain [" << domain_.xmin << ", " << domain_.xmax << "] x [" << domain_.ymin << ", "
-      << domain_.ymax << "]";
+    s << "the contact point (" << y[kOffsetAlpha] << ", " << y[kOffsetAlpha + 1] << ") left the domain ["
+      << domain_.xmin << ", " << domain_.xmax << "] x [" << domain_.ymin << ", " << domain_.ymax << "]";
     return {Status::domain, s.str()};
   }
   return {};

@@ -54,7 +54,11 @@ class Problem {
  public:
   Problem(std::string name, RollingBall model, FlatState y0, double t_end, Domain domain = {},
           std::shared_ptr<const ExactSolution> exact = nullptr)
-      : name_(std::move(name)), model_(std::move(model)), y0_(y0), t_end_(t_end), domain_(domain),
+      : name_(std::move(name)),
+        model_(std::move(model)),
+        y0_(y0),
+        t_end_(t_end),
+        domain_(domain),
         exact_(std::move(exact)) {}
 
   const std::string& name() const { return name_; }
@@ -67,14 +71,18 @@ class Problem {
 
   // The flat view: dy = F(y), 14 numbers each.
   template <class T>
-  void flat_rhs(const T* y, T* dy) const { model_.flat_rhs(y, dy); }
+  void flat_rhs(const T* y, T* dy) const {
+    model_.flat_rhs(y, dy);
+  }
   // The same, also giving the validity margins at y (no extra work but a
   // few products: the quantities come from the evaluation itself).
   void flat_rhs(const double* y, double* dy, ModelMargins& margins) const { model_.flat_rhs(y, dy, margins); }
   // The Lie-group view at orientation R: omega(R, z) and G(R, z), z and dz
   // 5 numbers, omega 3. R matters only where model().anisotropic().
   template <class T>
-  void lie_rhs(const Mat3& R, const T* z, T* omega, T* dz) const { model_.lie_rhs(R, z, omega, dz); }
+  void lie_rhs(const Mat3& R, const T* z, T* omega, T* dz) const {
+    model_.lie_rhs(R, z, omega, dz);
+  }
   void lie_rhs(const Mat3& R, const double* z, double* omega, double* dz, ModelMargins& margins) const {
     model_.lie_rhs(R, z, omega, dz, margins);
   }

@@ -35,8 +35,7 @@ double ModelMargins::r_kappa_max() const {
   return 1.0 - mu_min;
 }
 
-RollingBall::RollingBall(Landscape landscape, BallParams params)
-    : landscape_(std::move(landscape)), p_(params) {
+RollingBall::RollingBall(Landscape landscape, BallParams params) : landscape_(std::move(landscape)), p_(params) {
   const double mr2 = p_.mass * p_.radius * p_.radius;
   const Vec3* I = p_.inertia ? &*p_.inertia : nullptr;
   general_ = I != nullptr;

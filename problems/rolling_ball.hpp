@@ -17,8 +17,8 @@
 namespace rb {
 
 struct BallParams {
-  double radius = 0.1;  // r > 0
-  double mass = 1.0;    // m > 0
+  double radius = 0.1;    // r > 0
+  double mass = 1.0;      // m > 0
   double gravity = 9.81;  // g0: gravity is (0, 0, -g0)
   // Principal moments (I1, I2, I3) about the body axes; absent: the
   // homogeneous ball, (2/5) m r^2 each, and R does not enter the motion.
@@ -62,28 +62,28 @@ template <class T>
 struct Kinematics {
   using V2 = Eigen::Matrix<T, 2, 1>;
   using V3 = Eigen::Matrix<T, 3, 1>;
-  V3 N;                           // upward unit normal
-  Eigen::Matrix<T, 3, 2> N_d;     // N' = dN / d(x, y)
-  Eigen::Matrix<T, 3, 2> C_d;     // C' = phi' + r N'
-  Eigen::Matrix<T, 2, 2> E;       // C'^T C'
+  V3 N;                        // upward unit normal
+  Eigen::Matrix<T, 3, 2> N_d;  // N' = dN / d(x, y)
+  Eigen::Matrix<T, 3, 2> C_d;  // C' = phi' + r N'
+  Eigen::Matrix<T, 2, 2> E;    // C'^T C'
   T det_E;
-  V3 omega;                       // angular velocity, world frame
-  V2 alpha_dot;                   // contact point velocity
-  V3 v_dot;                       // rate of the angular momentum about the contact
-  Jet2<T> f;                      // landscape gradient and Hessian; f.f is NaN (not needed)
+  V3 omega;      // angular velocity, world frame
+  V2 alpha_dot;  // contact point velocity
+  V3 v_dot;      // rate of the angular momentum about the contact
+  Jet2<T> f;     // landscape gradient and Hessian; f.f is NaN (not needed)
 };
 
 // Derived quantities at one flat state (docs/model.md, "Derived quantities").
 struct Derived {
-  Vec3 N;                // upward unit normal at the contact
-  Vec3 centre;           // c = phi + r N
-  Vec3 centre_velocity;  // c' = r omega x N
-  Vec3 omega;            // world frame
-  double energy;         // H = 1/2 omega^T T omega + m g0 c_z
-  double spin;           // s = omega . N
-  double normal_force;   // F . N, F = m c'' - m g
-  double kappa1, kappa2; // principal curvatures, kappa1 >= kappa2, > 0 concave
-  double det_E;          // det(C'^T C'): 0 where the contact is singular
+  Vec3 N;                  // upward unit normal at the contact
+  Vec3 centre;             // c = phi + r N
+  Vec3 centre_velocity;    // c' = r omega x N
+  Vec3 omega;              // world frame
+  double energy;           // H = 1/2 omega^T T omega + m g0 c_z
+  double spin;             // s = omega . N
+  double normal_force;     // F . N, F = m c'' - m g
+  double kappa1, kappa2;   // principal curvatures, kappa1 >= kappa2, > 0 concave
+  double det_E;            // det(C'^T C'): 0 where the contact is singular
   double rotation_defect;  // ||R^T R - I||_F
   double det_defect;       // det R - 1
 };
@@ -222,8 +222,8 @@ class RollingBall {
 
   Landscape landscape_;
   BallParams p_;
-  bool general_ = false;      // inertia given: the general code path
-  bool anisotropic_ = false;  // and the moments are not all equal
+  bool general_ = false;       // inertia given: the general code path
+  bool anisotropic_ = false;   // and the moments are not all equal
   Vec3 inv_d_ = Vec3::Zero();  // 1 / (I_k + m r^2), anisotropic ball only
   double theta_ = 0.0;         // the moment of a ball with equal ones
   double iso_scale_ = 0.0;     // s and c of T^-1 for equal moments (see kinematics)
@@ -331,8 +331,7 @@ Kinematics<T> RollingBall::kinematics(const Rot& R, const T* z) const {
   k.det_E = det_E;
   k.omega = {w0, w1, w2};
   k.alpha_dot = {ax, ay};
-  k.v_dot = {-mrg * N1 + mr2 * (d1 * q2 - d2 * q1), mrg * N0 + mr2 * (d2 * q0 - d0 * q2),
-             mr2 * (d0 * q1 - d1 * q0)};
+  k.v_dot = {-mrg * N1 + mr2 * (d1 * q2 - d2 * q1), mrg * N0 + mr2 * (d2 * q0 - d0 * q2), mr2 * (d0 * q1 - d1 * q0)};
   return k;
 }
 

@@ -1,14 +1,13 @@
 #include "problems/scene.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
-
-#include <nlohmann/json.hpp>
 
 #include "problems/exact.hpp"
 #include "problems/input_error.hpp"
@@ -168,8 +167,7 @@ Eigen::Matrix<double, n, 1> vector_at(const json& v, const std::string& key) {
   if (v.size() != static_cast<std::size_t>(n)) throw InputError(want + ", not " + std::to_string(v.size()), key);
   Eigen::Matrix<double, n, 1> out;
   for (int i = 0; i < n; ++i) {
-    if (!v[i].is_number())
-      throw InputError(want + "; element " + std::to_string(i) + " is a " + v[i].type_name(), key);
+    if (!v[i].is_number()) throw InputError(want + "; element " + std::to_string(i) + " is a " + v[i].type_name(), key);
     out[i] = v[i].get<double>();
     if (!std::isfinite(out[i])) throw InputError(want + "; element " + std::to_string(i) + " is not finite", key);
   }
@@ -194,9 +192,8 @@ Vec3 read_inertia(const json& v, const SceneBall& ball) {
   const double slack = 1e-12 * I.cwiseAbs().sum();
   for (int k = 0; k < 3; ++k)
     if (!(I[k] > 0.0))
-      throw InputError("each principal moment [I1, I2, I3] must be > 0, not I" + std::to_string(k + 1) + " = " +
-                           num(I[k]),
-                       key);
+      throw InputError(
+          "each principal moment [I1, I2, I3] must be > 0, not I" + std::to_string(k + 1) + " = " + num(I[k]), key);
   for (int k = 0; k < 3; ++k) {
     const double others = I.sum() - I[k];
     if (I[k] > others + slack)
@@ -230,8 +227,7 @@ SceneStart read_start(const json& v) {
   if (omega) s.omega = vector_at<3>(*omega, "start.omega");
   if (velocity && velocity->is_array() && velocity->size() == 2)
     s.horizontal_velocity = vector_at<2>(*velocity, "start.velocity");
-  else if (velocity)
-    s.velocity = vector_at<3>(*velocity, "start.velocity");
+  else if (velocity) s.velocity = vector_at<3>(*velocity, "start.velocity");
   if (spin) s.spin = number_at(*spin, "start.spin");
   if (const json* q = optional_key(v, "orientation")) {
     s.orientation = vector_at<4>(*q, "start.orientation");
@@ -246,8 +242,8 @@ SceneStart read_start(const json& v) {
 // The scene's keys and their own ranges; no landscape yet.
 Scene read_scene(const json& root, const std::string& source) {
   if (!root.is_object()) throw InputError(std::string("a scene must be a JSON object, not ") + root.type_name());
-  reject_unknown_keys(root, "", {"name", "description", "landscape", "params", "domain", "ball", "gravity", "start",
-                                 "t_end", "exact"});
+  reject_unknown_keys(
+      root, "", {"name", "description", "landscape", "params", "domain", "ball", "gravity", "start", "t_end", "exact"});
   Scene s;
   s.source = source;
   s.name = string_at(required_key(root, "", "name"), "name");
@@ -309,8 +305,7 @@ void check_start(const Scene& s, const RollingBall& model) {
   const Vec3 omega0 = start_omega(s, model);
   const Vec3 omega_back = model.omega_from_momentum(rotation_of(y0), N, Vec3(momentum_of(y0)));
   if (!omega_back.allFinite() || (omega_back - omega0).norm() > 1e-9 * (1.0 + omega0.norm()))
-    throw InputError("the ball's radius and mass are too extreme for its inertia to be represented in doubles",
-                     "ball");
+    throw InputError("the ball's radius and mass are too extreme for its inertia to be represented in doubles", "ball");
   const ModelMargins m = model.margins_at(y0);
   if (!m.regular())
     throw InputError("the contact is not regular: r * max curvature = " + num(m.r_kappa_max()) +
@@ -346,16 +341,16 @@ struct SceneModel {
   std::shared_ptr<const ExactSolution> exact;
 
   bool made_of(const Scene& s) const {
-    return s.landscape == landscape && s.params == params && s.ball.radius == ball.radius &&
-           s.ball.mass == ball.mass && s.ball.inertia == ball.inertia && s.gravity == gravity;
+    return s.landscape == landscape && s.params == params && s.ball.radius == ball.radius && s.ball.mass == ball.mass &&
+           s.ball.inertia == ball.inertia && s.gravity == gravity;
   }
   // the scene may be changed after the load (a sweep's t_end): the exact
   // solution is reused only when nothing it was made from changed
   bool exact_fits(const Scene& s) const {
     const SceneStart& a = s.start;
     return made_of(s) && s.exact == exact_name && a.contact == start.contact && a.omega == start.omega &&
-           a.velocity == start.velocity && a.horizontal_velocity == start.horizontal_velocity &&
-           a.spin == start.spin && a.orientation == start.orientation;
+           a.velocity == start.velocity && a.horizontal_velocity == start.horizontal_velocity && a.spin == start.spin &&
+           a.orientation == start.orientation;
   }
 };
 
@@ -435,8 +430,8 @@ std::vector<std::string> shipped_scene_names() {
 }
 
 Scene load_scene(const std::string& name_or_path) {
-  const bool is_path = name_or_path.find('/') != std::string::npos ||
-                       (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
+  const bool is_path =
+      name_or_path.find('/') != std::string::npos || (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
   if (is_path) return load_scene_file(name_or_path);
   const std::vector<std::string> names = shipped_scene_names();
   if (std::find(names.begin(), names.end(), name_or_path) == names.end())

@@ -25,13 +25,13 @@ struct SceneBall {
 
 // The start of a scene. Exactly one of omega and velocity is set.
 struct SceneStart {
-  Vec2 contact = Vec2::Zero();    // alpha0 = (x, y) of the contact point
-  std::optional<Vec3> omega;      // angular velocity, world frame
-  std::optional<Vec3> velocity;   // the centre's velocity u0 (tangential), world frame
+  Vec2 contact = Vec2::Zero();   // alpha0 = (x, y) of the contact point
+  std::optional<Vec3> omega;     // angular velocity, world frame
+  std::optional<Vec3> velocity;  // the centre's velocity u0 (tangential), world frame
   // given as [u_x, u_y]: velocity is then empty until the landscape's slope
   // lifts it onto the tangent plane (start_velocity)
   std::optional<Vec2> horizontal_velocity;
-  double spin = 0.0;              // s0 = omega . N, with velocity only
+  double spin = 0.0;  // s0 = omega . N, with velocity only
   // The orientation R0 as a unit quaternion (w, x, y, z), normalised on load.
   Eigen::Vector4d orientation = Eigen::Vector4d(1.0, 0.0, 0.0, 0.0);
 };
@@ -40,18 +40,18 @@ struct SceneModel;  // scene.cpp: the model a load compiled, and what it was mad
 
 struct Scene {
   std::string name;
-  std::string description;             // empty when the file has none
-  std::string landscape;               // the formula text of z = f(x, y)
+  std::string description;               // empty when the file has none
+  std::string landscape;                 // the formula text of z = f(x, y)
   std::map<std::string, double> params;  // named constants of the formula
-  Domain domain;                       // unbounded when the file has none
+  Domain domain;                         // unbounded when the file has none
   bool has_domain = false;
   SceneBall ball;
-  double gravity = 9.81;               // g0 >= 0; gravity is (0, 0, -g0)
+  double gravity = 9.81;  // g0 >= 0; gravity is (0, 0, -g0)
   SceneStart start;
-  double t_end = 0.0;                  // > 0
-  std::string exact = "none";          // a name of exact_names() or "none"
-  std::string source = "<text>";       // the file it came from, or "<text>"
-  std::string text;                    // the JSON text it was parsed from (the sweep's cache key)
+  double t_end = 0.0;             // > 0
+  std::string exact = "none";     // a name of exact_names() or "none"
+  std::string source = "<text>";  // the file it came from, or "<text>"
+  std::string text;               // the JSON text it was parsed from (the sweep's cache key)
   // The model parse_scene compiled to check the start: make_problem reuses
   // it while the landscape, params, ball and gravity are those it was made
   // of, so that a load compiles the formula once.

@@ -12,9 +12,7 @@ namespace rb {
 // hat(w) x = w x x.
 inline Mat3 hat(const Vec3& w) {
   Mat3 W;
-  W << 0, -w.z(), w.y(),
-       w.z(), 0, -w.x(),
-       -w.y(), w.x(), 0;
+  W << 0, -w.z(), w.y(), w.z(), 0, -w.x(), -w.y(), w.x(), 0;
   return W;
 }
 
@@ -60,9 +58,7 @@ double rotation_angle_between(const Mat3& R_a, const Mat3& R_b);
 Mat3 project_to_so3(const Mat3& M);
 
 // ||R^T R - I||_F: how far R has drifted off SO(3).
-inline double rotation_defect(const Mat3& R) {
-  return (R.transpose() * R - Mat3::Identity()).norm();
-}
+inline double rotation_defect(const Mat3& R) { return (R.transpose() * R - Mat3::Identity()).norm(); }
 
 // The closest rotation to M, as project_to_so3, for M near SO(3) (a step's
 // R): Newton-Schulz (Bjorck-Bowie) steps X <- X (I - E / 2), E = X^T X - I,

@@ -24,12 +24,8 @@ using ZState = Eigen::Matrix<double, kZSize, 1>;
 using RowMajorMat3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
 
 // R from the flat state (row-major storage).
-inline Mat3 rotation_of(const FlatState& y) {
-  return Eigen::Map<const RowMajorMat3>(y.data() + kOffsetR);
-}
-inline void set_rotation(FlatState& y, const Mat3& R) {
-  Eigen::Map<RowMajorMat3>(y.data() + kOffsetR) = R;
-}
+inline Mat3 rotation_of(const FlatState& y) { return Eigen::Map<const RowMajorMat3>(y.data() + kOffsetR); }
+inline void set_rotation(FlatState& y, const Mat3& R) { Eigen::Map<RowMajorMat3>(y.data() + kOffsetR) = R; }
 // v (angular momentum about the contact point, world frame).
 inline Vec3 momentum_of(const FlatState& y) { return y.segment<3>(kOffsetV); }
 // alpha = (x, y), the contact point's coordinates.

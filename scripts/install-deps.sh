@@ -15,10 +15,11 @@ packages=(
   # scripts/robustness.sh: libFuzzer and the sanitizer runtimes, llvm-symbolizer for stacks
   clang-14 libclang-rt-14-dev llvm-14
 )
-# only scripts/test.sh needs these: the SLURM test's single-node cluster and
+# only scripts/test.sh needs these: the SLURM test's single-node cluster
 # (tests/slurm/test_slurm.sh), chromium for the index.html test, flake8 for
-# the Python lint (lint.python); the main job stays lean without them
-test_packages=(slurm-wlm munge chromium python3-flake8)
+# the Python lint (lint.python), clang-format for the C++ one (lint.format);
+# the main job stays lean without them
+test_packages=(slurm-wlm munge chromium python3-flake8 clang-format-14)
 case "${1:-}" in
   "") ;;
   --tests) packages+=("${test_packages[@]}") ;;

@@ -32,3 +32,11 @@ endif()
 add_test(NAME lint.python
          COMMAND ${RB_PYTHON3} -m flake8 analysis tests scripts
          WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
+
+# the C and C++ sources follow .clang-format (clang-format-14, installed by
+# install-deps.sh --tests); once, in the release build, as it reads only text
+if(NOT RB_SANITIZE)
+  add_test(NAME lint.format
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check-format.sh
+           WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
+endif()

@@ -13,7 +13,7 @@ namespace rb {
 enum class ErrorScale { radius, omega_scale, one };
 
 struct ErrorComponent {
-  const char* name;      // the key in a run's "error", "below_floor", an order's "observed"
+  const char* name;   // the key in a run's "error", "below_floor", an order's "observed"
   const char* label;  // what it measures, for axes and tables (the unit follows)
   const char* unit;
   ErrorScale scale;

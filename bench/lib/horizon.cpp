@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "bench/lib/drift.hpp"
+#include "bench/lib/integrate_safely.hpp"
 #include "bench/lib/order_fit.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
@@ -38,10 +39,18 @@ std::string fixed(double v, const char* format) {
 }
 
 json fit_json(const GrowthFit& f) {
-  return {{"p", number(f.p)}, {"ci95", number(f.ci95)}, {"p_early", number(f.p_early)},
-          {"p_late", number(f.p_late)}, {"log10_c", number(f.log10_c)}, {"t_from", f.t_from}, {"t_to", f.t_to},
-          {"points", f.points}, {"largest", number(f.largest)}, {"rounding_level", f.rounding_level},
-          {"at_rounding", f.at_rounding}, {"why_none", f.why_none.empty() ? json(nullptr) : json(f.why_none)}};
+  return {{"p", number(f.p)},
+          {"ci95", number(f.ci95)},
+          {"p_early", number(f.p_early)},
+          {"p_late", number(f.p_late)},
+          {"log10_c", number(f.log10_c)},
+          {"t_from", f.t_from},
+          {"t_to", f.t_to},
+          {"points", f.points},
+          {"largest", number(f.largest)},
+          {"rounding_level", f.rounding_level},
+          {"at_rounding", f.at_rounding},
+          {"why_none", f.why_none.empty() ? json(nullptr) : json(f.why_none)}};
 }
 
 }  // namespace
@@ -116,13 +125,7 @@ HorizonRecord horizon_run(const Problem& problem, const Integrator& m, const Hor
   // every output a whole number of steps, so that no step is shortened to land
   for (const long n : output_steps(samples, spec.steps, every)) o.output_times.push_back(spec.h * n);
   const auto start = std::chrono::steady_clock::now();
-  RunResult run;
-  try {
-    run = m.integrate(problem, o);
-  } catch (const std::exception& e) {
-    run.status = Status::error;
-    run.message = e.what();
-  }
+  const RunResult run = integrate_safely(m, problem, o);
   r.status = run.status;
   r.message = run.message;
   r.stop_time = run.stop_time;
@@ -155,7 +158,8 @@ HorizonRecord horizon_run(const Problem& problem, const Integrator& m, const Hor
       f->t_from = t_from;
       f->t_to = r.t_end;
       f->rounding_level = rounding;
-      f->why_none = "the run stopped at t = " + fixed(r.stop_time, "%.6g") + " (" + std::string(status_name(r.status)) + ")";
+      f->why_none =
+          "the run stopped at t = " + fixed(r.stop_time, "%.6g") + " (" + std::string(status_name(r.status)) + ")";
     }
   }
   return r;
@@ -182,8 +186,9 @@ long parse_horizon_steps(const std::string& text) {
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
   if (text.empty() || end != text.c_str() + text.size() || !(v >= 1000.0 && v <= 1e8) || v != std::floor(v))
-    throw InputError("expected a whole number of steps from 1000 to 1e8 (e.g. 100000 or 1e6), got '" +
-                         valid_utf8(text) + "'", "horizon-steps");
+    throw InputError(
+        "expected a whole number of steps from 1000 to 1e8 (e.g. 100000 or 1e6), got '" + valid_utf8(text) + "'",
+        "horizon-steps");
   return static_cast<long>(v);
 }
 
@@ -216,13 +221,26 @@ HorizonResults run_horizon(const SweepSpec& spec, const std::function<void(const
 json horizon_json(const HorizonResults& results) {
   json runs = json::array();
   for (const HorizonRecord& r : results.runs)
-    runs.push_back({{"index", r.index}, {"scene", r.scene}, {"r_feeds_back", r.r_feeds_back},
-                    {"integrator", r.method.name}, {"family", r.method.family},
-                    {"declared_order", r.method.declared_order}, {"on_group", r.method.on_group}, {"h", r.h},
-                    {"steps_planned", r.steps}, {"t_end", r.t_end}, {"status", std::string(status_name(r.status))},
-                    {"message", r.message}, {"stop_time", r.stop_time}, {"steps", r.cost.steps},
-                    {"rhs_evals", r.cost.rhs_evals}, {"exp_evals", r.cost.exp_evals}, {"wall_s", r.wall_s},
-                    {"energy_scale", r.energy_scale}, {"t", r.t}, {"energy_error", r.energy_error},
+    runs.push_back({{"index", r.index},
+                    {"scene", r.scene},
+                    {"r_feeds_back", r.r_feeds_back},
+                    {"integrator", r.method.name},
+                    {"family", r.method.family},
+                    {"declared_order", r.method.declared_order},
+                    {"on_group", r.method.on_group},
+                    {"h", r.h},
+                    {"steps_planned", r.steps},
+                    {"t_end", r.t_end},
+                    {"status", std::string(status_name(r.status))},
+                    {"message", r.message},
+                    {"stop_time", r.stop_time},
+                    {"steps", r.cost.steps},
+                    {"rhs_evals", r.cost.rhs_evals},
+                    {"exp_evals", r.cost.exp_evals},
+                    {"wall_s", r.wall_s},
+                    {"energy_scale", r.energy_scale},
+                    {"t", r.t},
+                    {"energy_error", r.energy_error},
                     {"rotation_defect", r.rotation_defect},
                     {"fit", {{"energy_error", fit_json(r.energy_fit)}, {"rotation_defect", fit_json(r.defect_fit)}}}});
   return {{"runs", runs}};
@@ -231,8 +249,13 @@ json horizon_json(const HorizonResults& results) {
 json horizon_options_json(const HorizonSpec& s) {
   std::vector<std::string> scenes;
   for (const std::string& scene : s.scenes) scenes.push_back(valid_utf8(scene));
-  return {{"enabled", s.enabled}, {"scenes", scenes}, {"integrators", s.integrators}, {"h", s.h},
-          {"steps", s.steps}, {"samples_per_decade", s.samples_per_decade}, {"fit_decades", s.fit_decades},
+  return {{"enabled", s.enabled},
+          {"scenes", scenes},
+          {"integrators", s.integrators},
+          {"h", s.h},
+          {"steps", s.steps},
+          {"samples_per_decade", s.samples_per_decade},
+          {"fit_decades", s.fit_decades},
           {"dense_outputs", s.dense_outputs}};
 }
 

@@ -18,8 +18,8 @@ namespace rb {
 
 // err ~ C t^p over [t_from, t_to].
 struct GrowthFit {
-  double p = kNaN;        // slope of log10 err on log10 t; NaN without a fit
-  double ci95 = kNaN;     // half-width of its 95 % interval (least squares, points taken as independent)
+  double p = kNaN;     // slope of log10 err on log10 t; NaN without a fit
+  double ci95 = kNaN;  // half-width of its 95 % interval (least squares, points taken as independent)
   // the slopes over the first and the second half of the window (in log t):
   // where they differ by more than ci95 the growth law is still changing,
   // a wider and more honest interval than ci95
@@ -47,13 +47,13 @@ struct HorizonRecord {
   bool r_feeds_back = false;
   MethodInfo method;
   double h = 0.0;
-  long steps = 0;          // planned; the run ends at t_end = steps h
+  long steps = 0;  // planned; the run ends at t_end = steps h
   double t_end = 0.0;
   Status status = Status::ok;
   std::string message;
   double stop_time = 0.0;
   Cost cost;
-  double wall_s = 0.0;     // the integration and the measurement
+  double wall_s = 0.0;        // the integration and the measurement
   double energy_scale = 0.0;  // m g0 r + the starting kinetic energy (J)
   // at the sample times: the largest over [0, t] of the states measured (the
   // samples and a uniform grid of about dense_outputs states between)

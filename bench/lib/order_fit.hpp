@@ -24,14 +24,14 @@ struct LineFit {
 LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y);
 
 struct OrderFit {
-  double slope = 0.0;      // observed order p in error ~ C h^p; NaN when no fit
-  double intercept = 0.0;  // log10(C)
-  double r2 = 0.0;         // coefficient of determination of the fit
-  double residual = 0.0;   // root-mean-square residual of log10(error) about the line
-  double slope_ci95 = 0.0; // half-width of the 95 % confidence interval of the slope
+  double slope = 0.0;       // observed order p in error ~ C h^p; NaN when no fit
+  double intercept = 0.0;   // log10(C)
+  double r2 = 0.0;          // coefficient of determination of the fit
+  double residual = 0.0;    // root-mean-square residual of log10(error) about the line
+  double slope_ci95 = 0.0;  // half-width of the 95 % confidence interval of the slope
   double h_min = 0.0, h_max = 0.0;
   int points = 0;
-  int at_floor = 0;        // measured points left out for lying at or below 10 * floor
+  int at_floor = 0;  // measured points left out for lying at or below 10 * floor
 };
 
 // A verdict needs at least this many points in its window.

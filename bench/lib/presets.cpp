@@ -37,8 +37,8 @@ HorizonSpec horizon_study(long steps) {
   HorizonSpec h;
   h.enabled = true;
   h.scenes = {"bumpy-long", "chaplygin-bumpy-long"};
-  h.integrators = {"euler", "exp-euler", "rk4", "odeint-rk4", "gsl-rk4", "rk4-projected", "rk4-quaternion",
-                   "rkmk4", "cf4", "cg4a"};
+  h.integrators = {"euler",         "exp-euler",      "rk4",   "odeint-rk4", "gsl-rk4",
+                   "rk4-projected", "rk4-quaternion", "rkmk4", "cf4",        "cg4a"};
   h.steps = steps;
   return h;
 }
@@ -51,8 +51,17 @@ SweepSpec preset(const std::string& name) {
   if (name == "quick") {
     // CI: a handful of methods, three scenes (one where R feeds back), short runs
     s.scenes = {"valley-sideways", "bowl-planar", "chaplygin-valley"};
-    s.integrators = {"euler", "exp-euler", "rk4", "rkmk4", "rkmk4-seminar", "cf4", "cg4a", "odeint-rk4", "gsl-rk4",
-                     "odeint-dopri5-adaptive", "gsl-rkf45-adaptive"};
+    s.integrators = {"euler",
+                     "exp-euler",
+                     "rk4",
+                     "rkmk4",
+                     "rkmk4-seminar",
+                     "cf4",
+                     "cg4a",
+                     "odeint-rk4",
+                     "gsl-rk4",
+                     "odeint-dopri5-adaptive",
+                     "gsl-rkf45-adaptive"};
     s.hs = powers_of_two(4, 9);
     s.tols = {1e-4, 1e-6, 1e-8, 1e-10};
     s.t_end = 2.0;
@@ -92,8 +101,14 @@ SweepSpec preset(const std::string& name) {
     // flat and Lie methods at each of orders 4 (two a side), 5 and 8, steps
     // and tolerances fine enough to read each at 1e-4, 1e-6 and 1e-9
     s.regime = default_regime_grid();
-    s.integrators = {"rk4", "rk4-projected", "rkmk4", "cg4a", "odeint-dopri5-adaptive", "rkmk-dp54-adaptive",
-                     "odeint-fehlberg78-adaptive", "rkmk-f78-adaptive"};
+    s.integrators = {"rk4",
+                     "rk4-projected",
+                     "rkmk4",
+                     "cg4a",
+                     "odeint-dopri5-adaptive",
+                     "rkmk-dp54-adaptive",
+                     "odeint-fehlberg78-adaptive",
+                     "rkmk-f78-adaptive"};
     s.hs = powers_of_two(1, 10);
     s.tols = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
     s.repeats = 3;

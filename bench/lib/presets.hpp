@@ -39,14 +39,14 @@ struct HorizonSpec {
   std::vector<std::string> integrators;  // fixed-step methods
   double h = 1.0 / 128.0;                // a power of two: every sample time n h is exact
   long steps = 100'000;
-  int samples_per_decade = 8;            // log-spaced sample times (in steps)
-  double fit_decades = 2.0;              // fit window: t_end 10^-fit_decades .. t_end
-  long dense_outputs = 20'000;           // states measured between samples for the largest-so-far
+  int samples_per_decade = 8;   // log-spaced sample times (in steps)
+  double fit_decades = 2.0;     // fit window: t_end 10^-fit_decades .. t_end
+  long dense_outputs = 20'000;  // states measured between samples for the largest-so-far
 };
 
 struct SweepSpec {
   std::string preset = "custom";
-  std::vector<std::string> scenes;       // shipped names or JSON paths; empty: all shipped
+  std::vector<std::string> scenes;  // shipped names or JSON paths; empty: all shipped
   // the regime study: scenes generated from this grid instead of scenes
   // (bench/lib/regime_scenes.hpp)
   std::optional<RegimeGrid> regime;
@@ -71,7 +71,7 @@ struct SweepSpec {
   std::string controller;
   StabilitySpec stability;
   HorizonSpec horizon;
-  std::string cache_dir;                 // reference cache; empty: none
+  std::string cache_dir;  // reference cache; empty: none
 };
 
 // The named preset; throws InputError (key "preset") for an unknown name.

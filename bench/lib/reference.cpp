@@ -37,8 +37,7 @@ std::vector<ReferencePoint> solve(const Problem& problem, const std::string& met
   return points;
 }
 
-std::string cache_key(const std::string& scene_content, const std::vector<double>& times,
-                      const ReferenceSettings& s) {
+std::string cache_key(const std::string& scene_content, const std::vector<double>& times, const ReferenceSettings& s) {
   std::ostringstream key;
   key.precision(17);
   key << kReferenceFormat << '|' << code_version() << '|' << s.primary << '|' << s.cross_check << '|' << s.h << '|'
@@ -50,8 +49,14 @@ std::string cache_key(const std::string& scene_content, const std::vector<double
 }
 
 nlohmann::json to_json(const Reference& r) {
-  nlohmann::json j = {{"scene", r.scene}, {"kind", r.kind}, {"message", r.message}, {"method", r.method}, {"cross_check", r.cross_check},
-                      {"error", r.error}, {"exact_rotation", r.exact_rotation}, {"t", r.t}};
+  nlohmann::json j = {{"scene", r.scene},
+                      {"kind", r.kind},
+                      {"message", r.message},
+                      {"method", r.method},
+                      {"cross_check", r.cross_check},
+                      {"error", r.error},
+                      {"exact_rotation", r.exact_rotation},
+                      {"t", r.t}};
   nlohmann::json points = nlohmann::json::array();
   for (const ReferencePoint& p : r.points) {
     std::vector<double> v{p.alpha.x(), p.alpha.y()};
@@ -117,7 +122,8 @@ Reference make_reference(const Problem& problem, const std::string& scene_conten
   namespace fs = std::filesystem;
   fs::path cache_file;
   if (!settings.cache_dir.empty()) {
-    cache_file = fs::path(settings.cache_dir) / (problem.name() + "-" + cache_key(scene_content, times, settings) + ".json");
+    cache_file =
+        fs::path(settings.cache_dir) / (problem.name() + "-" + cache_key(scene_content, times, settings) + ".json");
     std::ifstream in(cache_file);
     if (in) {
       try {
@@ -151,7 +157,8 @@ Reference make_reference(const Problem& problem, const std::string& scene_conten
   name << settings.cross_check << " h=" << settings.h / 2;
   ref.cross_check = name.str();
   ref.kind = "computed";
-  for (std::size_t i = 0; i < times.size(); ++i) ref.error = std::max(ref.error, point_distance(ref.points[i], check[i]));
+  for (std::size_t i = 0; i < times.size(); ++i)
+    ref.error = std::max(ref.error, point_distance(ref.points[i], check[i]));
 
   if (const ExactSolution* exact = problem.exact()) {
     // the closed form replaces what it knows; the computed solution checks it
@@ -179,8 +186,8 @@ Reference make_reference(const Problem& problem, const std::string& scene_conten
     // whole or not at all, also when shards write the same entry at once;
     // a cache that cannot be written is only slower next time
     try {
-      write_output_file(cache_file.string(), to_json(ref).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
-                        "cache");
+      write_output_file(cache_file.string(),
+                        to_json(ref).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), "cache");
     } catch (const InputError&) {
     }
   }

@@ -26,14 +26,14 @@ struct ReferencePoint {
 
 struct Reference {
   std::string scene;
-  std::string kind;         // "exact", "computed", or "none" when a reference method failed
-  std::string method;       // e.g. "rkmk4 h=0.000244140625" or "exact plane"
-  std::string cross_check;  // the second method
-  double error = 0.0;       // largest disagreement, contact/centre/omega/rotation
+  std::string kind;            // "exact", "computed", or "none" when a reference method failed
+  std::string method;          // e.g. "rkmk4 h=0.000244140625" or "exact plane"
+  std::string cross_check;     // the second method
+  double error = 0.0;          // largest disagreement, contact/centre/omega/rotation
   bool exact_rotation = true;  // false: the rotation comes from the computed solution
   std::vector<double> t;
   std::vector<ReferencePoint> points;
-  std::string message;      // why there is no reference ("none")
+  std::string message;  // why there is no reference ("none")
   bool from_cache = false;
 };
 
@@ -42,7 +42,7 @@ struct ReferenceSettings {
   std::string primary = "rkmk4";
   std::string cross_check = "rk38";
   double h = 1.0 / 16384.0;  // the primary's step; the cross-check takes h / 2
-  std::string cache_dir;    // empty: no caching
+  std::string cache_dir;     // empty: no caching
 };
 
 // The reference of a problem on an output grid (increasing, ending at the

@@ -92,8 +92,7 @@ RegimeGrid parse_regime_grid(const std::string& text, const RegimeGrid& base) {
   for (const std::string& part : split(text, ';')) {
     const auto eq = part.find('=');
     if (eq == std::string::npos)
-      throw InputError("expected AXIS=V1,V2,... for each axis, separated by ';' (or default, full), got '" + part +
-                           "'",
+      throw InputError("expected AXIS=V1,V2,... for each axis, separated by ';' (or default, full), got '" + part + "'",
                        kKey);
     const std::string axis = part.substr(0, eq);
     if (std::find(kRegimeAxes.begin(), kRegimeAxes.end(), axis) == kRegimeAxes.end())

@@ -27,8 +27,8 @@ const std::vector<double> kOrientation = {0.8775825618903728, 0.1598085128680676
 
 std::string cell_text(const RegimeCell& c) {
   char text[160];
-  std::snprintf(text, sizeof text, "inertia %g, spin %g rad/s, roughness %g, t_end %g", c.inertia, c.spin,
-                c.roughness, c.t_end);
+  std::snprintf(text, sizeof text, "inertia %g, spin %g rad/s, roughness %g, t_end %g", c.inertia, c.spin, c.roughness,
+                c.t_end);
   return text;
 }
 
@@ -84,16 +84,28 @@ json regime_json(const RegimeGrid& grid, const std::vector<Scene>& scenes) {
     if (scene == scenes.end()) throw std::logic_error("regime_json: no scene " + c.scene);
     const double omega0 = start_omega(*scene, make_problem(*scene).model()).norm();
     const std::vector<double> moments = regime_moments(c.inertia);
-    cells.push_back({{"scene", c.scene}, {"inertia", c.inertia}, {"spin", c.spin}, {"roughness", c.roughness},
-                     {"t_end", c.t_end}, {"moments", moments.empty() ? json(nullptr) : json(moments)},
-                     {"amplitude", c.roughness / kWaveNumber}, {"omega0", omega0},
+    cells.push_back({{"scene", c.scene},
+                     {"inertia", c.inertia},
+                     {"spin", c.spin},
+                     {"roughness", c.roughness},
+                     {"t_end", c.t_end},
+                     {"moments", moments.empty() ? json(nullptr) : json(moments)},
+                     {"amplitude", c.roughness / kWaveNumber},
+                     {"omega0", omega0},
                      {"spin_ratio", omega0 * kRadius / kSpeed}});
   }
   return {{"axes", regime_axes_json(grid)},
           {"fixed",
-           {{"landscape", kLandscape}, {"bowl", kBowl}, {"wave_number", kWaveNumber}, {"domain", kDomain},
-            {"radius", kRadius}, {"mass", kMass}, {"mean_moment", kMeanMoment}, {"contact", kContact},
-            {"speed", kSpeed}, {"orientation", kOrientation}}},
+           {{"landscape", kLandscape},
+            {"bowl", kBowl},
+            {"wave_number", kWaveNumber},
+            {"domain", kDomain},
+            {"radius", kRadius},
+            {"mass", kMass},
+            {"mean_moment", kMeanMoment},
+            {"contact", kContact},
+            {"speed", kSpeed},
+            {"orientation", kOrientation}}},
           {"cells", cells}};
 }
 

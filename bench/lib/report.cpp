@@ -1,5 +1,6 @@
 #include "bench/lib/report.hpp"
 
+#include <gsl/gsl_version.h>
 #include <sys/utsname.h>
 
 #include <Eigen/Core>
@@ -9,7 +10,6 @@
 #include <cmath>
 #include <ctime>
 #include <fstream>
-#include <gsl/gsl_version.h>
 #include <map>
 #include <sstream>
 #include <thread>
@@ -87,14 +87,29 @@ json options_of(const SweepSpec& s) {
   // scene paths as the user typed them: any bytes, text here
   std::vector<std::string> scenes;
   for (const std::string& scene : s.scenes) scenes.push_back(valid_utf8(scene));
-  return {{"preset", s.preset}, {"scenes", scenes}, {"integrators", s.integrators}, {"h", s.hs}, {"tol", s.tols},
-          {"t_end", number(s.t_end > 0 ? s.t_end : kNaN)}, {"dt_out", number(s.dt_out > 0 ? s.dt_out : kNaN)}, {"error_dt", s.error_dt}, {"repeats", s.repeats},
-          {"repeat_budget_s", s.repeat_budget_s}, {"jobs", s.jobs}, {"max_steps", s.max_steps},
+  return {{"preset", s.preset},
+          {"scenes", scenes},
+          {"integrators", s.integrators},
+          {"h", s.hs},
+          {"tol", s.tols},
+          {"t_end", number(s.t_end > 0 ? s.t_end : kNaN)},
+          {"dt_out", number(s.dt_out > 0 ? s.dt_out : kNaN)},
+          {"error_dt", s.error_dt},
+          {"repeats", s.repeats},
+          {"repeat_budget_s", s.repeat_budget_s},
+          {"jobs", s.jobs},
+          {"max_steps", s.max_steps},
           {"controller", s.controller.empty() ? json(nullptr) : json(s.controller)},
           {"stability",
-           {{"enabled", st.enabled}, {"scenes", st.scenes}, {"integrators", st.integrators}, {"drift_h", st.drift_h},
-            {"drift_t_end", st.drift_t_end}, {"search_h_max", st.search_h_max}, {"search_h_min", st.search_h_min},
-            {"search_t_end", st.search_t_end}, {"energy_fraction", st.energy_fraction},
+           {{"enabled", st.enabled},
+            {"scenes", st.scenes},
+            {"integrators", st.integrators},
+            {"drift_h", st.drift_h},
+            {"drift_t_end", st.drift_t_end},
+            {"search_h_max", st.search_h_max},
+            {"search_h_min", st.search_h_min},
+            {"search_t_end", st.search_t_end},
+            {"energy_fraction", st.energy_fraction},
             {"rotation_defect_bound", st.rotation_defect_bound}}},
           {"horizon", horizon_options_json(s.horizon)}};
 }
@@ -102,8 +117,11 @@ json options_of(const SweepSpec& s) {
 }  // namespace
 
 json errors_json(const RunErrors& e, const std::string& reference_kind) {
-  json j = {{"reference", reference_kind}, {"worst", number(e.worst)}, {"floor", e.floor},
-            {"below_floor", e.below_floor}, {"points", e.points}};
+  json j = {{"reference", reference_kind},
+            {"worst", number(e.worst)},
+            {"floor", e.floor},
+            {"below_floor", e.below_floor},
+            {"points", e.points}};
   for (std::size_t i = 0; i < kErrorComponentCount; ++i) j[kErrorComponents[i].name] = number(e.component(i));
   return j;
 }
@@ -119,20 +137,36 @@ json run_json(const RunRecord& r, const std::string& reference_kind) {
   std::vector<double> samples = r.wall_samples;
   const Mat3 R = rotation_of(r.final_state);
   const MethodInfo& m = r.method;
-  return {{"index", r.index}, {"scene", r.scene}, {"integrator", m.name}, {"family", m.family},
-          {"declared_order", m.declared_order}, {"declared_rotation_order", m.rotation_order},
-          {"adaptive", m.adaptive}, {"needs_jacobian", m.needs_jacobian}, {"controller", r.controller},
-          {"tableau", m.tableau.empty() ? json(nullptr) : json(m.tableau)}, {"on_group", m.on_group},
-          {"h", number(r.h)}, {"rtol", number(r.rtol)}, {"atol", number(r.atol)},
-          {"status", std::string(status_name(r.status))}, {"message", r.message}, {"stop_time", r.stop_time},
-          {"steps", r.cost.steps}, {"rejected", r.cost.rejected}, {"rhs_evals", r.cost.rhs_evals},
-          {"jacobian_evals", r.cost.jacobian_evals}, {"exp_evals", r.cost.exp_evals},
-          {"dexpinv_evals", r.cost.dexpinv_evals}, {"validity_checks", r.cost.validity_checks},
+  return {{"index", r.index},
+          {"scene", r.scene},
+          {"integrator", m.name},
+          {"family", m.family},
+          {"declared_order", m.declared_order},
+          {"declared_rotation_order", m.rotation_order},
+          {"adaptive", m.adaptive},
+          {"needs_jacobian", m.needs_jacobian},
+          {"controller", r.controller},
+          {"tableau", m.tableau.empty() ? json(nullptr) : json(m.tableau)},
+          {"on_group", m.on_group},
+          {"h", number(r.h)},
+          {"rtol", number(r.rtol)},
+          {"atol", number(r.atol)},
+          {"status", std::string(status_name(r.status))},
+          {"message", r.message},
+          {"stop_time", r.stop_time},
+          {"steps", r.cost.steps},
+          {"rejected", r.cost.rejected},
+          {"rhs_evals", r.cost.rhs_evals},
+          {"jacobian_evals", r.cost.jacobian_evals},
+          {"exp_evals", r.cost.exp_evals},
+          {"dexpinv_evals", r.cost.dexpinv_evals},
+          {"validity_checks", r.cost.validity_checks},
           {"wall_s",
            {{"median", number(median(samples))},
             {"min", number(samples.empty() ? kNaN : *std::min_element(samples.begin(), samples.end()))},
             {"max", number(samples.empty() ? kNaN : *std::max_element(samples.begin(), samples.end()))},
-            {"repeats", samples.size()}, {"samples", samples}}},
+            {"repeats", samples.size()},
+            {"samples", samples}}},
           {"timed_outputs", r.timed_outputs},
           {"error", errors_json(r.error, reference_kind)},
           {"error_max", errors_json(r.error_max, reference_kind)},
@@ -150,38 +184,58 @@ namespace {
 
 // What each timed call contains, the same for every method.
 json timed_call(const SweepSpec& spec) {
-  const std::string outputs = spec.dt_out > 0.0 ? "every multiple of dt_out up to t_end (for a fixed-step method, those "
-                                                  "that are multiples of h)"
-                                                : "t_end only";
-  return {{"outputs", outputs},
-          {"contains",
-           "one integrate() call from t = 0 to t_end recording the outputs above: every step with its rhs "
-           "evaluations, the model's validity check of the start and of each accepted state (validity_checks), "
-           "the finiteness and domain check of each recorded output, and copying the recorded states; not the untimed warm-up call before it, not the error measurement; "
-           "for a --stepper plug-in run in its own process, the time the child measured around the integration after an "
-           "untimed warm-up run in it (not the fork, the pipe or the warm-up)"},
-          {"error_max", "the largest error over the timed run's steps: from an untimed run recording every multiple "
-                        "of error_dt (dt_out when given) up to t_end where that run takes the timed run's steps "
-                        "(fixed-step and dense-output methods), else over the timed run's own outputs; then "
-                        "error_max_run.same_steps is false and error_grid holds the grid run's errors"}};
+  const std::string outputs = spec.dt_out > 0.0
+                                  ? "every multiple of dt_out up to t_end (for a fixed-step method, those "
+                                    "that are multiples of h)"
+                                  : "t_end only";
+  return {
+      {"outputs", outputs},
+      {"contains",
+       "one integrate() call from t = 0 to t_end recording the outputs above: every step with its rhs "
+       "evaluations, the model's validity check of the start and of each accepted state (validity_checks), "
+       "the finiteness and domain check of each recorded output, and copying the recorded states; not the untimed "
+       "warm-up call before it, not the error measurement; "
+       "for a --stepper plug-in run in its own process, the time the child measured around the integration after an "
+       "untimed warm-up run in it (not the fork, the pipe or the warm-up)"},
+      {"error_max",
+       "the largest error over the timed run's steps: from an untimed run recording every multiple "
+       "of error_dt (dt_out when given) up to t_end where that run takes the timed run's steps "
+       "(fixed-step and dense-output methods), else over the timed run's own outputs; then "
+       "error_max_run.same_steps is false and error_grid holds the grid run's errors"}};
 }
 
 json stability_json(const StabilityResults& s) {
   json drift = json::array(), stable = json::array();
   for (const DriftRecord& d : s.drift)
-    drift.push_back({{"index", d.index}, {"scene", d.scene}, {"integrator", d.method.name}, {"family", d.method.family},
-                     {"h", d.h}, {"status", std::string(status_name(d.status))}, {"message", d.message},
-                     {"stop_time", d.stop_time}, {"t", d.t}, {"energy_error", d.energy_error},
-                     {"rotation_defect", d.rotation_defect}, {"steps", d.cost.steps},
-                     {"rhs_evals", d.cost.rhs_evals}, {"wall_s", d.wall_s}});
+    drift.push_back({{"index", d.index},
+                     {"scene", d.scene},
+                     {"integrator", d.method.name},
+                     {"family", d.method.family},
+                     {"h", d.h},
+                     {"status", std::string(status_name(d.status))},
+                     {"message", d.message},
+                     {"stop_time", d.stop_time},
+                     {"t", d.t},
+                     {"energy_error", d.energy_error},
+                     {"rotation_defect", d.rotation_defect},
+                     {"steps", d.cost.steps},
+                     {"rhs_evals", d.cost.rhs_evals},
+                     {"wall_s", d.wall_s}});
   for (const StableStepRecord& r : s.largest_stable_h) {
     json tried = json::array();
     for (const StableStepTry& t : r.tried)
-      tried.push_back({{"h", t.h}, {"status", std::string(status_name(t.status))},
-                       {"energy_error", number(t.energy_error)}, {"rotation_defect", number(t.rotation_defect)},
+      tried.push_back({{"h", t.h},
+                       {"status", std::string(status_name(t.status))},
+                       {"energy_error", number(t.energy_error)},
+                       {"rotation_defect", number(t.rotation_defect)},
                        {"stable", t.stable}});
-    stable.push_back({{"index", r.index}, {"scene", r.scene}, {"integrator", r.method.name}, {"family", r.method.family},
-                      {"h", number(r.h)}, {"at_limit", r.at_limit}, {"rotation_defect", number(r.rotation_defect)},
+    stable.push_back({{"index", r.index},
+                      {"scene", r.scene},
+                      {"integrator", r.method.name},
+                      {"family", r.method.family},
+                      {"h", number(r.h)},
+                      {"at_limit", r.at_limit},
+                      {"rotation_defect", number(r.rotation_defect)},
                       {"energy_scale", r.energy_scale},
                       {"thresholds", {{"energy", r.energy_fraction}, {"rotation_defect", r.rotation_defect_bound}}},
                       {"tried", tried}});
@@ -242,11 +296,18 @@ json fit_tolerances(const std::vector<FitRun>& runs) {
         log_step.push_back(std::log10(t / steps)), log_step_error.push_back(std::log10(e));
     }
     const LineFit step = fit_line(log_step, log_step_error);
-    fits.push_back({{"scene", key.first}, {"integrator", key.second}, {"slope", number(line.slope)},
-                    {"intercept", number(line.intercept)}, {"residual", number(line.residual)},
-                    {"ci95", number(line.slope_ci95)}, {"points", line.points},
-                    {"step_order", {{"slope", number(step.slope)}, {"ci95", number(step.slope_ci95)},
-                                    {"residual", number(step.residual)}, {"points", step.points}}}});
+    fits.push_back({{"scene", key.first},
+                    {"integrator", key.second},
+                    {"slope", number(line.slope)},
+                    {"intercept", number(line.intercept)},
+                    {"residual", number(line.residual)},
+                    {"ci95", number(line.slope_ci95)},
+                    {"points", line.points},
+                    {"step_order",
+                     {{"slope", number(step.slope)},
+                      {"ci95", number(step.slope_ci95)},
+                      {"residual", number(step.residual)},
+                      {"points", step.points}}}});
   }
   return fits;
 }
@@ -273,8 +334,8 @@ json fit_orders(const std::vector<FitRun>& runs, const ReferenceFloors& floors) 
       }
       // up to 8 points: on the quarter-step ladder 6 span only 1.5 halvings
       const OrderFit fit = fit_order(h, e, floor, 0.1, 8);
-      const int declared = kErrorComponents[i].name == std::string("rotation") ? first.declared_rotation_order
-                                                                              : first.declared_order;
+      const int declared =
+          kErrorComponents[i].name == std::string("rotation") ? first.declared_rotation_order : first.declared_order;
       // a higher order than declared is no failure: for odd-order flat-view
       // methods the leading error in R is symmetric, so the rotation angle
       // after projection converges one order faster
@@ -287,7 +348,10 @@ json fit_orders(const std::vector<FitRun>& runs, const ReferenceFloors& floors) 
       if (std::isfinite(fit.slope)) {
         observed[c] = fit.slope;
         ci95[c] = number(fit.slope_ci95);
-        fits[c] = {{"h_min", fit.h_min}, {"h_max", fit.h_max}, {"points", fit.points}, {"r2", fit.r2},
+        fits[c] = {{"h_min", fit.h_min},
+                   {"h_max", fit.h_max},
+                   {"points", fit.points},
+                   {"r2", fit.r2},
                    {"residual", fit.residual}};
       } else {
         observed[c] = nullptr;
@@ -295,11 +359,19 @@ json fit_orders(const std::vector<FitRun>& runs, const ReferenceFloors& floors) 
         fits[c] = {{"points", std::max(0, fit.points)}};
       }
     }
-    orders.push_back({{"scene", key.first}, {"integrator", key.second}, {"declared", first.declared_order},
-                      {"declared_rotation", first.declared_rotation_order}, {"observed", observed},
-                      {"ci95", ci95}, {"fit", fits["contact"]}, {"fits", fits}, {"verdict", verdicts},
+    orders.push_back({{"scene", key.first},
+                      {"integrator", key.second},
+                      {"declared", first.declared_order},
+                      {"declared_rotation", first.declared_rotation_order},
+                      {"observed", observed},
+                      {"ci95", ci95},
+                      {"fit", fits["contact"]},
+                      {"fits", fits},
+                      {"verdict", verdicts},
                       {"inconclusive_reason", reasons},
-                      {"pass", lower ? json(false) : all_as_declared ? json(true) : json(nullptr)}});
+                      {"pass", lower             ? json(false)
+                               : all_as_declared ? json(true)
+                                                 : json(nullptr)}});
   }
   return orders;
 }
@@ -320,10 +392,15 @@ json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes, c
                  const StabilityResults& stability, const HorizonResults& horizon) {
   json references = json::array();
   for (const SweepScene& s : scenes)
-    references.push_back({{"scene", s.scene.name}, {"kind", s.reference.kind}, {"method", s.reference.method},
-                          {"cross_check", s.reference.cross_check}, {"error", s.reference.error},
-                          {"exact_rotation", s.reference.exact_rotation}, {"t_end", s.scene.t_end},
-                          {"omega_scale", s.omega_scale}, {"inertia", inertia_json(s)},
+    references.push_back({{"scene", s.scene.name},
+                          {"kind", s.reference.kind},
+                          {"method", s.reference.method},
+                          {"cross_check", s.reference.cross_check},
+                          {"error", s.reference.error},
+                          {"exact_rotation", s.reference.exact_rotation},
+                          {"t_end", s.scene.t_end},
+                          {"omega_scale", s.omega_scale},
+                          {"inertia", inertia_json(s)},
                           {"r_feeds_back", s.problem.model().anisotropic()},
                           {"message", s.reference.message}});
   std::map<std::string, std::string> kind;
@@ -338,9 +415,17 @@ json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes, c
   }
   json options = options_of(spec);
   options["shard"] = {spec.shard_index, spec.shard_count};
-  json report = {{"schema", kReportSchema}, {"created", utc_now()}, {"git", code_version()}, {"machine", machine()},
-                 {"build", build()}, {"preset", spec.preset}, {"options", options}, {"references", references},
-                 {"timed_call", timed_call(spec)}, {"runs", run_list}, {"stability", stability_json(stability)},
+  json report = {{"schema", kReportSchema},
+                 {"created", utc_now()},
+                 {"git", code_version()},
+                 {"machine", machine()},
+                 {"build", build()},
+                 {"preset", spec.preset},
+                 {"options", options},
+                 {"references", references},
+                 {"timed_call", timed_call(spec)},
+                 {"runs", run_list},
+                 {"stability", stability_json(stability)},
                  {"horizon", horizon_json(horizon)}};
   put_fits(report, fit_input, floors);
   if (spec.regime) {
@@ -384,10 +469,12 @@ void check_every_shard_once(const std::vector<json>& shards) {
     const long index = s.at("options").at("shard").at(0).get<long>();
     const long of = s.at("options").at("shard").at(1).get<long>();
     if (of != count)
-      throw InputError("the reports come from sweeps cut into " + std::to_string(count) + " and " +
-                           std::to_string(of) + " shards", "reports");
+      throw InputError(
+          "the reports come from sweeps cut into " + std::to_string(count) + " and " + std::to_string(of) + " shards",
+          "reports");
     if (std::find(have.begin(), have.end(), index) != have.end())
-      throw InputError("shard " + std::to_string(index) + " of " + std::to_string(count) + " is given twice", "reports");
+      throw InputError("shard " + std::to_string(index) + " of " + std::to_string(count) + " is given twice",
+                       "reports");
     have.push_back(index);
   }
   for (long i = 0; i < count; ++i)
@@ -395,8 +482,9 @@ void check_every_shard_once(const std::vector<json>& shards) {
   if (missing.empty()) return;
   std::sort(have.begin(), have.end());
   throw InputError(std::string(missing.size() == 1 ? "shard " : "shards ") + joined(missing) + " of " +
-                       std::to_string(count) + (missing.size() == 1 ? " is" : " are") + " missing (given: " +
-                       joined(have) + ")", "reports");
+                       std::to_string(count) + (missing.size() == 1 ? " is" : " are") +
+                       " missing (given: " + joined(have) + ")",
+                   "reports");
 }
 
 }  // namespace
@@ -447,12 +535,13 @@ json merge_reports(const std::vector<json>& shards, const std::vector<std::strin
     const std::string file = k < files.size() ? files[k] : "shard report " + std::to_string(k);
     json options = s.at("options");
     options.erase("shard");
-    if (options != base_options) throw InputError("the reports come from different sweeps (their options differ)", "reports");
+    if (options != base_options)
+      throw InputError("the reports come from different sweeps (their options differ)", "reports");
     const json& entries = list_at(s, "runs", "", file);
     const std::vector<FitRun> fits = fit_runs_of(entries, file);
     for (std::size_t i = 0; i < entries.size(); ++i)
-      runs.push_back({index_of(entries[i], "the report '" + file + "': runs[" + std::to_string(i) + "]"), entries[i],
-                      fits[i]});
+      runs.push_back(
+          {index_of(entries[i], "the report '" + file + "': runs[" + std::to_string(i) + "]"), entries[i], fits[i]});
     for (const json& d : list_at(s, "stability", "drift", file)) drift.push_back(d);
     for (const json& d : list_at(s, "stability", "largest_stable_h", file)) stable.push_back(d);
     if (s.contains("horizon"))  // absent from reports older than the horizon study

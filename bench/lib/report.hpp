@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "bench/lib/horizon.hpp"
 #include "bench/lib/fit_run.hpp"
+#include "bench/lib/horizon.hpp"
 #include "bench/lib/stability.hpp"
 #include "bench/lib/sweep.hpp"
 

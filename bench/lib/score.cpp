@@ -7,8 +7,8 @@
 #include "bench/lib/report.hpp"
 #include "bench/lib/sweep.hpp"
 #include "bench/lib/trajectory_csv.hpp"
-#include "problems/utf8.hpp"
 #include "problems/input_error.hpp"
+#include "problems/utf8.hpp"
 
 namespace rb {
 

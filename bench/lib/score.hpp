@@ -14,8 +14,8 @@ namespace rb {
 inline constexpr const char* kScoreSchema = "rollbench.score/1";
 
 struct ScoreOptions {
-  double t_end = 0.0;   // 0: the scene's t_end (as `run --preset quick`'s 2 s, give it here)
-  double dt_out = 0.0;  // the output grid's spacing; 0: the runner's error grid (error_dt)
+  double t_end = 0.0;     // 0: the scene's t_end (as `run --preset quick`'s 2 s, give it here)
+  double dt_out = 0.0;    // the output grid's spacing; 0: the runner's error grid (error_dt)
   std::string cache_dir;  // reference cache, as `run --cache`; empty: none
 };
 

@@ -1,8 +1,8 @@
 #include "bench/lib/score_peers.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -74,8 +74,9 @@ Status status_named(const std::string& name, const PeerFields& f, const std::str
   for (Status s : {Status::ok, Status::diverged, Status::lift_off, Status::curvature, Status::domain,
                    Status::step_underflow, Status::max_steps, Status::error})
     if (status_name(s) == name) return s;
-  f.refuse(key, "'" + name + "' is not a report status (ok, diverged, lift-off, curvature, domain, step-underflow, "
-                            "max-steps, error)");
+  f.refuse(key, "'" + name +
+                    "' is not a report status (ok, diverged, lift-off, curvature, domain, step-underflow, "
+                    "max-steps, error)");
 }
 
 // The peer's facts about one solve, and its trajectory scored.
@@ -169,8 +170,7 @@ void check_same_grid(const json& report, const std::string& into, const SweepSce
 json score_peers(const std::string& peers_path, const std::string& into, const std::string& cache_dir) {
   const json peers = read_json(peers_path);
   const PeerFields f(peers_path);
-  if (f.text(peers, "schema", "") != kPeersSchema)
-    f.refuse("schema", "is not \"" + std::string(kPeersSchema) + "\"");
+  if (f.text(peers, "schema", "") != kPeersSchema) f.refuse("schema", "is not \"" + std::string(kPeersSchema) + "\"");
   const std::string peer = f.text(peers, "peer", "");
   const json& runs = f.at(peers, "runs", "");
   if (!runs.is_array() || runs.empty()) f.refuse("runs", "must be a list of one or more solves");

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "bench/lib/drift.hpp"
+#include "bench/lib/integrate_safely.hpp"
 #include "integrators/registry.hpp"
 #include "problems/so3.hpp"
 
@@ -36,13 +37,7 @@ DriftRecord drift_run(const Problem& problem, const Integrator& m, const Stabili
   o.rtol = o.atol = 1e-8;  // used by adaptive methods only
   o.output_times = log_spaced(10.0 * st.drift_h, st.drift_t_end, st.drift_samples);
   const auto t0 = std::chrono::steady_clock::now();
-  RunResult run;
-  try {
-    run = m.integrate(problem, o);
-  } catch (const std::exception& e) {
-    run.status = Status::error;
-    run.message = e.what();
-  }
+  const RunResult run = integrate_safely(m, problem, o);
   d.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   d.status = run.status;
   d.message = run.message;
@@ -109,8 +104,7 @@ StabilityResults run_stability(const SweepSpec& spec, const std::function<void(c
         DriftRecord d = drift_run(s.problem, find_integrator(name), st);
         d.index = index;
         progress("stability: drift of " + name + " on " + s.scene.name + ": " + std::string(status_name(d.status)) +
-                 " (" + progress_line("drift", index + 1, scenes.size() * st.integrators.size(), elapsed()) +
-                 ")");
+                 " (" + progress_line("drift", index + 1, scenes.size() * st.integrators.size(), elapsed()) + ")");
         out.drift.push_back(std::move(d));
       }
       ++index;

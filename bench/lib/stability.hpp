@@ -40,13 +40,13 @@ struct StableStepRecord {
   std::size_t index = 0;
   std::string scene;
   MethodInfo method;
-  double h = kNaN;  // NaN when even h_min was not stable
-  double energy_scale = 0.0;     // m g0 r + the starting kinetic energy
-  double energy_fraction = 0.0;  // the bound on energy_error
+  double h = kNaN;                     // NaN when even h_min was not stable
+  double energy_scale = 0.0;           // m g0 r + the starting kinetic energy
+  double energy_fraction = 0.0;        // the bound on energy_error
   double rotation_defect_bound = 0.0;  // the bound on rotation_defect
-  double rotation_defect = kNaN; // at h
-  bool at_limit = false;         // h is the ladder's top: the method may be stable beyond
-  std::vector<StableStepTry> tried;  // by h ascending, up to the first unstable one
+  double rotation_defect = kNaN;       // at h
+  bool at_limit = false;               // h is the ladder's top: the method may be stable beyond
+  std::vector<StableStepTry> tried;    // by h ascending, up to the first unstable one
 };
 
 struct StabilityResults {

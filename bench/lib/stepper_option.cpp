@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "integrators/steppers/plugin_stepper.hpp"
 #include "integrators/registry.hpp"
+#include "integrators/steppers/plugin_stepper.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {
@@ -13,8 +13,7 @@ PluginIsolation plugin_isolation(const std::string& mode, double wall_limit_s) {
   if (mode == "none") {
     isolation.mode = PluginIsolation::Mode::none;
   } else if (!mode.empty() && mode != "process") {
-    throw InputError("expected process (each plug-in run in a child process) or none (in-process), got '" + mode +
-                         "'",
+    throw InputError("expected process (each plug-in run in a child process) or none (in-process), got '" + mode + "'",
                      "stepper-isolation");
   }
   if (!std::isnan(wall_limit_s)) {

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "bench/lib/drift.hpp"
+#include "bench/lib/integrate_safely.hpp"
 #include "bench/lib/regime_scenes.hpp"
 #include "bench/lib/trajectory_csv.hpp"
 #include "integrators/driver.hpp"
@@ -112,8 +113,7 @@ void measure_end(const SweepScene& s, const RunResult& run, RunRecord& r) {
     worst_relative = std::max(worst_relative, e.values[i] / scales[i]);
   // an error below the reference's floor counts as the floor: no more digits
   // can be claimed than the reference has
-  if (std::isfinite(worst_relative))
-    r.error.scd = -std::log10(std::max({worst_relative, r.error.floor, 1e-16}));
+  if (std::isfinite(worst_relative)) r.error.scd = -std::log10(std::max({worst_relative, r.error.floor, 1e-16}));
 }
 
 // The largest errors and the drift over the error grid, from a run that
@@ -126,7 +126,7 @@ void measure_grid(const SweepScene& s, const RunResult& run, RunRecord& r) {
   r.error_max.floor = s.reference.error;
   if (!reached_end(s, run)) return;
   PointErrors largest{};  // every component 0, worst 0
-  std::size_t k = 0;  // both time lists increase: walk them together
+  std::size_t k = 0;      // both time lists increase: walk them together
   int points = 0;
   for (std::size_t i = 0; i < run.output.t.size(); ++i) {
     while (k < s.reference.t.size() && s.reference.t[k] < run.output.t[i]) ++k;
@@ -138,19 +138,6 @@ void measure_grid(const SweepScene& s, const RunResult& run, RunRecord& r) {
 }
 
 namespace {
-
-RunResult integrate_safely(const Integrator& m, const Problem& problem, const RunOptions& o) {
-  try {
-    return m.integrate(problem, o);
-  } catch (const std::exception& e) {
-    // an option the method cannot take is a failed run, not a failed sweep
-    RunResult run;
-    run.status = Status::error;
-    run.message = valid_utf8(e.what());  // an exception's text may quote a path: any bytes
-    run.final_state = problem.y0();
-    return run;
-  }
-}
 
 // A run whose process died or was killed (an isolated plug-in's): its
 // state and cost are lost, and running it again would crash or hang again.

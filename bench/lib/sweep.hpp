@@ -23,7 +23,7 @@ inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 struct SweepScene {
   Scene scene;
   Problem problem;
-  std::string content;  // the scene file's text (cache key)
+  std::string content;              // the scene file's text (cache key)
   std::vector<double> times;        // the error grid: reference, error_max and drift
   std::vector<double> timed_times;  // what the timed call records: t_end, or the --dt-out grid
   Reference reference;
@@ -79,8 +79,8 @@ struct RunRecord {
   ErrorMaxSource error_max_source;
   RunErrors error_grid;
   bool has_error_grid = false;
-  double energy_drift = kNaN;     // max |H(t) - H(0)| over the error grid
-  double rotation_drift = kNaN;   // max ||R^T R - I||_F over the error grid
+  double energy_drift = kNaN;    // max |H(t) - H(0)| over the error grid
+  double rotation_drift = kNaN;  // max ||R^T R - I||_F over the error grid
   FlatState final_state = FlatState::Zero();
   double final_energy = kNaN;
 };
@@ -101,8 +101,8 @@ struct SweepTask {
   std::size_t index = 0;  // position in the full (unsharded) sweep
   std::size_t scene = 0;
   std::string integrator;
-  double h = kNaN;    // fixed-step
-  double tol = kNaN;  // adaptive: rtol = atol = tol
+  double h = kNaN;         // fixed-step
+  double tol = kNaN;       // adaptive: rtol = atol = tol
   std::string controller;  // RunOptions::controller (empty: the method's own)
 };
 

@@ -41,7 +41,8 @@ void write_row(std::ostream& out, const RollingBall& model, double t, const Flat
 void write_trajectory_csv(std::ostream& out, const Problem& problem, const Trajectory& trajectory) {
   out << trajectory_csv_header() << '\n';
   write_row(out, problem.model(), 0.0, problem.y0());
-  for (std::size_t i = 0; i < trajectory.t.size(); ++i) write_row(out, problem.model(), trajectory.t[i], trajectory.y[i]);
+  for (std::size_t i = 0; i < trajectory.t.size(); ++i)
+    write_row(out, problem.model(), trajectory.t[i], trajectory.y[i]);
 }
 
 std::vector<double> equally_spaced_outputs(double dt_out, double t_end, std::size_t max_rows) {
@@ -51,13 +52,11 @@ std::vector<double> equally_spaced_outputs(double dt_out, double t_end, std::siz
   if (!(count + 1 <= static_cast<double>(max_rows))) {
     // an infinite or astronomical count has no integer to print
     char rows[32];
-    if (count < 1e18)
-      std::snprintf(rows, sizeof rows, "%lld", static_cast<long long>(count) + 1);
-    else
-      std::snprintf(rows, sizeof rows, "%.3g", count);
-    throw InputError("t_end / dt-out asks for " + std::string(rows) + " rows, more than the limit of " +
-                         std::to_string(max_rows),
-                     "dt-out");
+    if (count < 1e18) std::snprintf(rows, sizeof rows, "%lld", static_cast<long long>(count) + 1);
+    else std::snprintf(rows, sizeof rows, "%.3g", count);
+    throw InputError(
+        "t_end / dt-out asks for " + std::string(rows) + " rows, more than the limit of " + std::to_string(max_rows),
+        "dt-out");
   }
   std::vector<double> times;
   times.reserve(static_cast<std::size_t>(count) + 1);

@@ -49,7 +49,9 @@ const ControllerKind& filter_controller(std::string_view name) {
 }
 
 FilterController::FilterController(const ControllerKind& kind, int error_order)
-    : e1_(-kind.b1 / error_order), e2_(-kind.b2 / error_order), e3_(-kind.b3 / error_order),
+    : e1_(-kind.b1 / error_order),
+      e2_(-kind.b2 / error_order),
+      e3_(-kind.b3 / error_order),
       k_inv_(1.0 / error_order) {}
 
 StepDecision FilterController::decide(double err, double h) {

@@ -22,8 +22,8 @@ namespace rb {
 // report) and the filter it applies.
 struct ControllerKind {
   const char* name;
-  double b1, b2, b3;    // the exponents above, times k
-  const char* what;     // one line for `rollbench list` and the docs
+  double b1, b2, b3;  // the exponents above, times k
+  const char* what;   // one line for `rollbench list` and the docs
 };
 
 // "constant": fixed steps of h, landing on the outputs (no error estimate);

@@ -13,6 +13,8 @@
 // Magnus series' term; composed the other way it has the opposite sign.
 #include "integrators/exp_product_scheme.hpp"
 
+// the coefficients keep the layout of their tables
+// clang-format off
 namespace rb::methods {
 
 // order 4, 4 stages
@@ -34,3 +36,4 @@ inline ExpProductScheme cf4() {
 }
 
 }  // namespace rb::methods
+// clang-format on

@@ -7,6 +7,8 @@
 // row 5 to c_5 = 0.8768903263420429. Why F_1 acts first: methods/cg3.hpp.
 #include "integrators/exp_product_scheme.hpp"
 
+// the coefficients keep the layout of their tables
+// clang-format off
 namespace rb::methods {
 
 // order 4, 5 stages
@@ -22,3 +24,4 @@ inline ExpProductScheme cg4a() {
 }
 
 }  // namespace rb::methods
+// clang-format on

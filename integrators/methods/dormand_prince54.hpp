@@ -1,8 +1,11 @@
 #pragma once
-// Source: Dormand & Prince, A family of embedded Runge-Kutta formulae, J. Comp. Appl. Math. 6 (1980); dense output: Shampine (1986).
+// Source: Dormand & Prince, A family of embedded Runge-Kutta formulae, J. Comp. Appl. Math. 6 (1980); dense output:
+// Shampine (1986).
 #include "integrators/methods/coefficients.hpp"
 #include "integrators/tableau.hpp"
 
+// the coefficients keep the layout of their tables
+// clang-format off
 namespace rb::methods {
 
 // Dormand-Prince 5(4) (DOPRI5): FSAL, its error weights use the FSAL stage
@@ -39,3 +42,4 @@ inline Tableau dormand_prince54() {
 }
 
 }  // namespace rb::methods
+// clang-format on

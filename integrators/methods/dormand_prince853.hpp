@@ -1,8 +1,11 @@
 #pragma once
-// Source: DOP853 of Hairer, Norsett & Wanner, Solving ODEs I (coefficients as in its Fortran code, also used by SciPy), with its 7th-order dense output.
+// Source: DOP853 of Hairer, Norsett & Wanner, Solving ODEs I (coefficients as in its Fortran code, also used by SciPy),
+// with its 7th-order dense output.
 #include "integrators/methods/coefficients.hpp"
 #include "integrators/tableau.hpp"
 
+// the coefficients keep the layout of their tables
+// clang-format off
 namespace rb::methods {
 
 // Dormand-Prince 8(5,3) (DOP853): 12 stages an attempt, the FSAL stage after
@@ -66,11 +69,10 @@ inline Tableau dormand_prince853() {
   p.b.assign(16, 0.0);
   for (int j = 0; j < 12; ++j) p.b[static_cast<std::size_t>(j)] = a_at(12, j);
   p.e.assign(16, 0.0);
-  const Entry e5[] = {{0, 0, 0.1312004499419488073250102996e-1}, {0, 5, -0.1225156446376204440720569753e+1},
-                              {0, 6, -0.4957589496572501915214079952}, {0, 7, 0.1664377182454986536961530415e+1},
-                              {0, 8, -0.3503288487499736816886487290}, {0, 9, 0.3341791187130174790297318841},
-                              {0, 10, 0.8192320648511571246570742613e-1},
-                              {0, 11, -0.2235530786388629525884427845e-1}};
+  const Entry e5[] = {{0, 0, 0.1312004499419488073250102996e-1},  {0, 5, -0.1225156446376204440720569753e+1},
+                      {0, 6, -0.4957589496572501915214079952},    {0, 7, 0.1664377182454986536961530415e+1},
+                      {0, 8, -0.3503288487499736816886487290},    {0, 9, 0.3341791187130174790297318841},
+                      {0, 10, 0.8192320648511571246570742613e-1}, {0, 11, -0.2235530786388629525884427845e-1}};
   for (const Entry& x : e5) p.e[static_cast<std::size_t>(x.j)] = x.value;
   p.embedded_order = 5;
   p.e_stretched = p.b;
@@ -137,3 +139,4 @@ inline Tableau dormand_prince853() {
 }
 
 }  // namespace rb::methods
+// clang-format on

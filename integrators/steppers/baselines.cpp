@@ -89,16 +89,18 @@ std::unique_ptr<Integrator> rk4_projected(std::string name, Projection projectio
                                        "step (polar factor by a Newton-Schulz step): 4 rhs and two 3x3 products "
                                        "a step",
                   .tableau = "rk4"};
-  return stepped_method(std::move(info),
-                        [projection](const Problem& problem) { return ProjectedStep{problem, projection}; });
+  return stepped_method(std::move(info), [projection](const Problem& problem) {
+    return ProjectedStep{problem, projection};
+  });
 }
 
 std::unique_ptr<Integrator> rk4_quaternion(std::string name) {
   MethodInfo info{.name = std::move(name),
                   .family = "quaternion",
                   .declared_order = 4,
-                  .description = "classical RK4 on (q, z), a unit quaternion for R with q' = (0, omega) (x) q / 2, "
-                                 "normalised after every step: 4 rhs and one normalisation a step"};
+                  .description =
+                      "classical RK4 on (q, z), a unit quaternion for R with q' = (0, omega) (x) q / 2, "
+                      "normalised after every step: 4 rhs and one normalisation a step"};
   return stepped_method(std::move(info), [](const Problem& problem) { return QuaternionStep(problem); });
 }
 

@@ -65,7 +65,8 @@ ExpPlan plan_of(const ExpProductScheme& scheme) {
   for (std::size_t i = 1; i < s; ++i) {
     const std::string where = scheme.name + " stage " + std::to_string(i + 1);
     factors[i] = nonzero_factors(scheme.stages[i]);
-    if (factors[i].size() > static_cast<std::size_t>(kMaxStages)) throw std::invalid_argument(where + ": too many factors");
+    if (factors[i].size() > static_cast<std::size_t>(kMaxStages))
+      throw std::invalid_argument(where + ": too many factors");
     plan.stage[i] = plan_product(factors[i], i, where, i);
     plan.z_stage[i] = z_row_of(factors[i], i);
   }

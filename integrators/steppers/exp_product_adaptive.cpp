@@ -98,8 +98,8 @@ std::unique_ptr<Integrator> exp_product_adaptive(ExpProductScheme scheme, const 
                   .controller = controller,
                   .description = "adaptive " + scheme.kind + " method, order " + std::to_string(scheme.order) +
                                  " with an embedded order-" + std::to_string(scheme.embedded_order) +
-                                 " update (error on (rotation vector, z), " + controller_title(controller) + " controller): " +
-                                 std::to_string(plan.stages - 1) + " rhs and " +
+                                 " update (error on (rotation vector, z), " + controller_title(controller) +
+                                 " controller): " + std::to_string(plan.stages - 1) + " rhs and " +
                                  std::to_string(stage_exps + update_exps) + " exponentials an attempt (" +
                                  std::to_string(update_exps) +
                                  " for a homogeneous ball); steps clamped onto the outputs: " + scheme.source,

@@ -18,7 +18,6 @@
 // accepted step), the stage exponentials on an anisotropic ball, and the
 // exponentials of both updates.
 #include <memory>
-
 #include <string>
 
 #include "integrators/exp_product_scheme.hpp"

@@ -28,11 +28,14 @@ struct MidpointStep {
 };
 
 inline std::unique_ptr<Integrator> explicit_midpoint() {
-  return stepped_method({.name = "midpoint",
-                         .family = "rk",
-                         .declared_order = 2,
-                         .description = "explicit midpoint rule on the flat view (the worked example of docs/extending.md)"},
-                        [](const Problem& problem) { return MidpointStep{problem, {}, {}, {}}; });
+  return stepped_method(
+      {.name = "midpoint",
+       .family = "rk",
+       .declared_order = 2,
+       .description = "explicit midpoint rule on the flat view (the worked example of docs/extending.md)"},
+      [](const Problem& problem) {
+        return MidpointStep{problem, {}, {}, {}};
+      });
 }
 
 }  // namespace rb

@@ -52,10 +52,8 @@ class FlatPairStepper {
     y_ = y_new_;
     // the next step's first stage: the FSAL stage, or evaluated by the next
     // attempt (so that its margins are that attempt's)
-    if (fsal_in_attempt_)
-      k_[0] = k_[static_cast<std::size_t>(*tableau_->fsal_stage())];
-    else
-      have_first_ = false;
+    if (fsal_in_attempt_) k_[0] = k_[static_cast<std::size_t>(*tableau_->fsal_stage())];
+    else have_first_ = false;
   }
 
   void state(FlatState& y) const { y = y_; }
@@ -75,8 +73,7 @@ class FlatPairStepper {
   }
 
   double error_norm(double h) const {
-    const FlatState scale =
-        (tol_.atol + tol_.rtol * y_.cwiseAbs().cwiseMax(y_new_.cwiseAbs()).array()).matrix();
+    const FlatState scale = (tol_.atol + tol_.rtol * y_.cwiseAbs().cwiseMax(y_new_.cwiseAbs()).array()).matrix();
     const FlatState e = h * combine(tableau_->e().data(), attempt_);
     return std::sqrt((e.array() / scale.array()).square().sum() / static_cast<double>(kFlatSize));
   }

@@ -174,8 +174,7 @@ std::string num(double x) {
 
 // A GSL return code as a status and a sentence. adaptive: GSL_FAILURE (and
 // GSL_ENOPROG) from evolve mean it could not shrink the step any further.
-Validity failure_of(int code, const CallbackState& cb, const std::string& stepper, bool adaptive, double t,
-                    double h) {
+Validity failure_of(int code, const CallbackState& cb, const std::string& stepper, bool adaptive, double t, double h) {
   const std::string gsl = std::string(" (") + gsl_code_name(code) + ": " + gsl_strerror(code) + ")";
   const std::string where = " at t = " + num(t) + ", h = " + num(h);
   const std::string who = "GSL " + stepper + ": ";

@@ -36,7 +36,9 @@ class Writer {
     put<std::uint64_t>(text.size());
     bytes.append(text);
   }
-  void put_state(const FlatState& y) { bytes.append(reinterpret_cast<const char*>(y.data()), sizeof(double) * y.size()); }
+  void put_state(const FlatState& y) {
+    bytes.append(reinterpret_cast<const char*>(y.data()), sizeof(double) * y.size());
+  }
   std::string bytes;
 };
 

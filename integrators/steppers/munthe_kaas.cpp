@@ -33,8 +33,7 @@ MethodInfo facts_of(const Tableau& tableau, std::string name, DexpinvKind dexpin
 
 std::unique_ptr<Integrator> rkmk_fixed(Tableau tableau, std::string name, DexpinvKind dexpinv) {
   MethodInfo info = facts_of(tableau, std::move(name), dexpinv);
-  return stepped_method(std::move(info), [tableau = std::move(tableau), dexpinv](const Problem& problem,
-                                                                                 auto&& drive) {
+  return stepped_method(std::move(info), [tableau = std::move(tableau), dexpinv](const Problem& problem, auto&& drive) {
     const StageTerms terms(tableau);
     std::array<Vec3, kMaxStages> K;
     std::array<ZState, kMaxStages> L;

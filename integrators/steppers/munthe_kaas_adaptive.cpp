@@ -43,8 +43,7 @@ class LieStepper {
  public:
   static constexpr bool dense_output = Dense;
 
-  LieStepper(const Problem& problem, const Tableau& tableau, const Tolerances& tol,
-             const std::vector<double>& outputs)
+  LieStepper(const Problem& problem, const Tableau& tableau, const Tolerances& tol, const std::vector<double>& outputs)
       : problem_(&problem),
         tableau_(&tableau),
         tol_(tol),
@@ -246,14 +245,13 @@ std::string description_of(const Tableau& p, const std::string& controller, bool
   // the stages past the attempt's, less the FSAL one (evaluated for the next step)
   const int extra = p.total_stages() - p.attempt_stages() - (p.fsal_stage() && !fsal_in_attempt ? 1 : 0);
   std::string text = "adaptive Runge-Kutta-Munthe-Kaas on the " + p.name() + " pair (order " +
-                     std::to_string(p.order()) + ", error estimate on (u, z), " + controller_title(controller) + " controller): " +
-                     std::to_string(per_attempt) + " rhs and " + std::to_string(p.attempt_stages() - 1) +
-                     " dexpinv a step, one exp";
+                     std::to_string(p.order()) + ", error estimate on (u, z), " + controller_title(controller) +
+                     " controller): " + std::to_string(per_attempt) + " rhs and " +
+                     std::to_string(p.attempt_stages() - 1) + " dexpinv a step, one exp";
   if (use_dense)
     text += "; outputs by its order-" + std::to_string(p.dense_order()) + " dense output through exp" +
             (extra > 0 ? " (" + std::to_string(extra) + " extra rhs a step with outputs)" : std::string());
-  else
-    text += "; steps clamped onto the outputs";
+  else text += "; steps clamped onto the outputs";
   return text;
 }
 
@@ -271,18 +269,17 @@ std::unique_ptr<Integrator> rkmk_adaptive(Tableau tableau, std::string name, con
                   .description = description_of(tableau, controller, use_dense),
                   .tableau = tableau.name(),
                   .on_group = true};
-  return adaptive_method(std::move(info), [tableau = std::move(tableau), use_dense](const Problem& problem,
-                                                                                      const RunOptions& options,
-                                                                                      const Tolerances& tol,
-                                                                                      auto&& drive) {
-    const std::vector<double> outputs = output_times_of(problem, options);
-    if (use_dense) {
-      LieStepper<true> stepper(problem, tableau, tol, outputs);
-      return drive(stepper);
-    }
-    LieStepper<false> stepper(problem, tableau, tol, outputs);
-    return drive(stepper);
-  });
+  return adaptive_method(std::move(info),
+                         [tableau = std::move(tableau), use_dense](const Problem& problem, const RunOptions& options,
+                                                                   const Tolerances& tol, auto&& drive) {
+                           const std::vector<double> outputs = output_times_of(problem, options);
+                           if (use_dense) {
+                             LieStepper<true> stepper(problem, tableau, tol, outputs);
+                             return drive(stepper);
+                           }
+                           LieStepper<false> stepper(problem, tableau, tol, outputs);
+                           return drive(stepper);
+                         });
 }
 
 }  // namespace rb

@@ -1,9 +1,6 @@
 #include "integrators/steppers/odeint.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <type_traits>
-
 #include <boost/numeric/odeint/stepper/adams_bashforth_moulton.hpp>
 #include <boost/numeric/odeint/stepper/bulirsch_stoer.hpp>
 #include <boost/numeric/odeint/stepper/controlled_runge_kutta.hpp>
@@ -13,6 +10,8 @@
 #include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
 #include <boost/numeric/odeint/stepper/runge_kutta_fehlberg78.hpp>
 #include <boost/numeric/odeint/util/odeint_error.hpp>
+#include <cmath>
+#include <type_traits>
 
 #include "integrators/driver.hpp"
 
@@ -116,10 +115,8 @@ using BulirschStoer = ode::bulirsch_stoer<OdeintState>;
 #pragma GCC diagnostic ignored "-Wuninitialized"
 template <class Controlled>
 Controlled make_controlled(const Tolerances& tol) {
-  if constexpr (std::is_same_v<Controlled, BulirschStoer>)
-    return BulirschStoer(tol.atol, tol.rtol);
-  else
-    return Controlled(typename Controlled::error_checker_type(tol.atol, tol.rtol));
+  if constexpr (std::is_same_v<Controlled, BulirschStoer>) return BulirschStoer(tol.atol, tol.rtol);
+  else return Controlled(typename Controlled::error_checker_type(tol.atol, tol.rtol));
 }
 #pragma GCC diagnostic pop
 
@@ -182,8 +179,8 @@ class DenseDopri5 {
     started_ = true;
     const int other = 1 - cur_;
     double t_step = t;
-    const ode::controlled_step_result r = guarded(
-        [&] { return controlled_.try_step(sys, x_[cur_], dxdt_[cur_], t_step, x_[other], dxdt_[other], h); });
+    const ode::controlled_step_result r =
+        guarded([&] { return controlled_.try_step(sys, x_[cur_], dxdt_[cur_], t_step, x_[other], dxdt_[other], h); });
     if (r != ode::success) return Attempt::rejected;
     t_old_ = t;
     t_new_ = t_step;
@@ -254,18 +251,17 @@ std::unique_ptr<Integrator> odeint_dopri5() {
 
 std::unique_ptr<Integrator> odeint_fehlberg78() {
   return std::make_unique<OdeintFixed<ode::runge_kutta_fehlberg78<OdeintState>>>(
-      "odeint-fehlberg78", 8, "Boost.Odeint runge_kutta_fehlberg78 at fixed step (8th-order solution)", false,
-      "f78");
+      "odeint-fehlberg78", 8, "Boost.Odeint runge_kutta_fehlberg78 at fixed step (8th-order solution)", false, "f78");
 }
 
 std::unique_ptr<Integrator> odeint_abm4() {
-  return std::make_unique<OdeintAbm<4>>(
-      "odeint-abm4", 4, "Boost.Odeint adams_bashforth_moulton<4> (PECE), started with runge_kutta4");
+  return std::make_unique<OdeintAbm<4>>("odeint-abm4", 4,
+                                        "Boost.Odeint adams_bashforth_moulton<4> (PECE), started with runge_kutta4");
 }
 
 std::unique_ptr<Integrator> odeint_abm5() {
-  return std::make_unique<OdeintAbm<5>>(
-      "odeint-abm5", 5, "Boost.Odeint adams_bashforth_moulton<5> (PECE), started with runge_kutta4");
+  return std::make_unique<OdeintAbm<5>>("odeint-abm5", 5,
+                                        "Boost.Odeint adams_bashforth_moulton<5> (PECE), started with runge_kutta4");
 }
 
 std::unique_ptr<Integrator> odeint_dopri5_adaptive() {

@@ -74,8 +74,7 @@ class PluginStepper final : public Integrator {
         std::snprintf(at, sizeof at, " at t = %.9g", t);
         // the driver ends the run here, at the last valid state
         // the reason is the plug-in's bytes: made valid UTF-8 here, where it enters
-        throw StepFailure(Status::error, "stepper '" + name() + "' returned error code " +
-                                             std::to_string(code) + at +
+        throw StepFailure(Status::error, "stepper '" + name() + "' returned error code " + std::to_string(code) + at +
                                              (message[0] != '\0' ? ": " + valid_utf8(message) : std::string()));
       }
       // a Lie-view method claims R on SO(3): hold it to that where the state
@@ -84,8 +83,10 @@ class PluginStepper final : public Integrator {
         const double defect = rotation_defect(rotation_of(next));
         if (defect > kOffGroupBound) [[unlikely]] {
           char why[160];
-          std::snprintf(why, sizeof why, " (Lie-group view) returned R off SO(3) in the step from t = %.9g: "
-                        "||R^T R - I||_F = %.3g > %.0e", t, defect, kOffGroupBound);
+          std::snprintf(why, sizeof why,
+                        " (Lie-group view) returned R off SO(3) in the step from t = %.9g: "
+                        "||R^T R - I||_F = %.3g > %.0e",
+                        t, defect, kOffGroupBound);
           throw StepFailure(Status::off_group, "stepper '" + name() + "'" + why);
         }
       }
@@ -105,16 +106,14 @@ bool is_name_character(char c) {
 
 // The library's facts, checked and copied out of its storage; where names
 // the file and the symbol, path the file for the description.
-MethodInfo checked_facts(const struct rollbench_stepper_info* info, const std::string& where,
-                         const std::string& path) {
+MethodInfo checked_facts(const struct rollbench_stepper_info* info, const std::string& where, const std::string& path) {
   auto refuse = [&](const std::string& why) { throw InputError(where + ": " + why, "stepper"); };
   if (info == nullptr) refuse("returned NULL");
   MethodInfo facts;
   if (info->name == nullptr || info->name[0] == '\0') refuse("the name is empty");
   facts.name = info->name;
   for (const char c : facts.name)
-    if (!is_name_character(c))
-      refuse("the name '" + facts.name + "' may hold only letters, digits and . _ + -");
+    if (!is_name_character(c)) refuse("the name '" + facts.name + "' may hold only letters, digits and . _ + -");
   if (info->family == nullptr || info->family[0] == '\0') refuse("the family of '" + facts.name + "' is empty");
   facts.family = valid_utf8(info->family);
   if (info->order < 1) refuse("the order of '" + facts.name + "' is " + std::to_string(info->order) + ", not >= 1");
@@ -124,7 +123,7 @@ MethodInfo checked_facts(const struct rollbench_stepper_info* info, const std::s
            ", not ROLLBENCH_VIEW_FLAT (0) or ROLLBENCH_VIEW_LIE (1)");
   const char* view = info->view == ROLLBENCH_VIEW_LIE ? "Lie-group view" : "flat view";
   facts.description = valid_utf8(std::string(info->description != nullptr ? info->description : "") + " (plug-in, " +
-                                  view + ", " + path + ")");
+                                 view + ", " + path + ")");
   return facts;
 }
 
@@ -156,8 +155,7 @@ std::unique_ptr<Integrator> load_plugin_stepper(const std::string& path, const P
     auto symbol = [&](const char* name) {
       void* address = dlsym(library, name);
       if (address == nullptr)
-        throw InputError("'" + path + "' does not export '" + name +
-                             "' (see integrators/plugin/rollbench_stepper.h)",
+        throw InputError("'" + path + "' does not export '" + name + "' (see integrators/plugin/rollbench_stepper.h)",
                          "stepper");
       return address;
     };

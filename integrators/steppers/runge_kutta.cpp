@@ -13,8 +13,8 @@ MethodInfo facts_of(const Tableau& tableau, std::string name) {
   return {.name = name.empty() ? tableau.name() : std::move(name),
           .family = "rk",
           .declared_order = tableau.order(),
-          .description = "classical explicit RK (" + tableau.name() + " tableau, " +
-                         std::to_string(tableau.stages()) + " stages) on the flat view",
+          .description = "classical explicit RK (" + tableau.name() + " tableau, " + std::to_string(tableau.stages()) +
+                         " stages) on the flat view",
           .tableau = tableau.name()};
 }
 

@@ -2,8 +2,8 @@
 // rb::Problem. Exceptions stop here: every entry point returns a code or NULL.
 #include "problems/abi/rollbench_problem.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <exception>
 #include <limits>

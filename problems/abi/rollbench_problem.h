@@ -34,7 +34,7 @@ extern "C" {
 /* The version of this ABI; bumped on any change to the functions below. */
 #define ROLLBENCH_PROBLEM_ABI_VERSION 1u
 
-#define ROLLBENCH_PROBLEM_STATE_SIZE 14  /* R (9), v (3), alpha (2) */
+#define ROLLBENCH_PROBLEM_STATE_SIZE 14   /* R (9), v (3), alpha (2) */
 #define ROLLBENCH_PROBLEM_DERIVED_SIZE 10 /* what rb_problem_derived writes */
 
 /* What rb_problem_rhs, rb_problem_jacobian and rb_problem_check return: 0,

@@ -6,9 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "bench/lib/presets.hpp"
 #include "integrators/registry.hpp"
@@ -43,8 +42,8 @@ TEST(Cli, ListShowsEveryRegisteredIntegratorAndTheScenes) {
 
 TEST(Cli, TrajectoryWritesTheCsvOfFormats) {
   const fs::path csv = temp_file("ok.csv");
-  const Outcome o = rollbench("trajectory valley-sideways --integrator rkmk4 --h 0.01 --dt-out 0.05 --t-end 1 --out " +
-                              csv.string());
+  const Outcome o =
+      rollbench("trajectory valley-sideways --integrator rkmk4 --h 0.01 --dt-out 0.05 --t-end 1 --out " + csv.string());
   ASSERT_EQ(o.code, 0) << o.err;
   const std::vector<std::string> rows = lines_of(slurp(csv));
   ASSERT_EQ(rows.size(), 1u + 21u);  // header, t = 0, 0.05, ..., 1
@@ -58,8 +57,8 @@ TEST(Cli, TrajectoryWritesTheCsvOfFormats) {
 
 TEST(Cli, AdaptiveMethodsTakeTolerances) {
   const fs::path csv = temp_file("adaptive.csv");
-  const Outcome o = rollbench("trajectory plane --integrator odeint-dopri5-adaptive --rtol 1e-8 --atol 1e-8 --out " +
-                              csv.string());
+  const Outcome o =
+      rollbench("trajectory plane --integrator odeint-dopri5-adaptive --rtol 1e-8 --atol 1e-8 --out " + csv.string());
   EXPECT_EQ(o.code, 0) << o.err;
   const Outcome missing = rollbench("trajectory plane --integrator odeint-dopri5-adaptive --out " + csv.string());
   EXPECT_EQ(missing.code, 2);
@@ -94,13 +93,13 @@ TEST(Cli, BadInputExitsWithTwoAndNamesThePlace) {
 
 TEST(Cli, ARunThatStopsEarlyExitsWithThreeAndKeepsItsRows) {
   const fs::path csv = temp_file("lift.csv");
-  const Outcome o = rollbench("trajectory " RB_TEST_DATA "/stop-lift-off.json --integrator rkmk4 --h 0.001 --out " +
-                              csv.string());
+  const Outcome o =
+      rollbench("trajectory " RB_TEST_DATA "/stop-lift-off.json --integrator rkmk4 --h 0.001 --out " + csv.string());
   EXPECT_EQ(o.code, 3);
   EXPECT_NE(o.err.find("lift-off"), std::string::npos) << o.err;
   const std::vector<std::string> rows = lines_of(slurp(csv));
-  EXPECT_GT(rows.size(), 10u);    // the rows before the stop are kept
-  EXPECT_LT(rows.size(), 202u);   // and none after it
+  EXPECT_GT(rows.size(), 10u);   // the rows before the stop are kept
+  EXPECT_LT(rows.size(), 202u);  // and none after it
 }
 
 TEST(Cli, RunRefusesAMisspeltIntegratorBeforeAnyReference) {
@@ -113,8 +112,8 @@ TEST(Cli, RunRefusesAMisspeltIntegratorBeforeAnyReference) {
 
 TEST(Cli, RunWithoutAPresetHasNoStabilityStudy) {
   const fs::path report = temp_file("no-preset.json");
-  const Outcome o = rollbench("run --scenes plane --integrators rk4,rkmk4 --h 0.25,0.125 --repeats 0 --out " +
-                              report.string());
+  const Outcome o =
+      rollbench("run --scenes plane --integrators rk4,rkmk4 --h 0.25,0.125 --repeats 0 --out " + report.string());
   ASSERT_EQ(o.code, 0) << o.err;
   const nlohmann::json j = nlohmann::json::parse(slurp(report));
   EXPECT_EQ(j.at("preset"), "custom");
@@ -138,8 +137,10 @@ TEST(Cli, ALieStepPastTheChartsEdgeIsChartLimitNotDiverged) {
 
 TEST(Cli, RunWritesAReportAndAShortTable) {
   const fs::path report = temp_file("report.json");
-  const Outcome o = rollbench("run --preset quick --scenes plane --integrators rk4,rkmk4 --h 0.1,0.05,0.025 --repeats 1 "
-                              "--out " + report.string());
+  const Outcome o = rollbench(
+      "run --preset quick --scenes plane --integrators rk4,rkmk4 --h 0.1,0.05,0.025 --repeats 1 "
+      "--out " +
+      report.string());
   ASSERT_EQ(o.code, 0) << o.err;
   EXPECT_NE(o.out.find("rkmk4"), std::string::npos);
   EXPECT_NE(o.err.find("reference of plane: exact"), std::string::npos) << o.err;
@@ -148,8 +149,10 @@ TEST(Cli, RunWritesAReportAndAShortTable) {
 
 TEST(Cli, RunDtOutSetsTheTimedOutputsAndRejectsBadSpacing) {
   const fs::path report = temp_file("dt-out.json");
-  const Outcome o = rollbench("run --preset quick --scenes plane --integrators rk4 --h 0.25 --repeats 0 "
-                              "--no-stability --dt-out 0.5 --out " + report.string());
+  const Outcome o = rollbench(
+      "run --preset quick --scenes plane --integrators rk4 --h 0.25 --repeats 0 "
+      "--no-stability --dt-out 0.5 --out " +
+      report.string());
   ASSERT_EQ(o.code, 0) << o.err;
   // plane runs 2 s in the quick preset: outputs 0.5, 1, 1.5, 2
   EXPECT_NE(slurp(report).find("\"timed_outputs\": 4"), std::string::npos);
@@ -167,10 +170,12 @@ TEST(Cli, RunControllerIsCheckedAndRecorded) {
   const fs::path report = temp_file("controller.json");
   Outcome o = rollbench("run --preset quick --controller p --out " + report.string());
   EXPECT_EQ(o.code, 2);
-  EXPECT_EQ(o.err, "rollbench: 'controller': unknown step-size controller 'p' (known: constant, library, i, pi, pid)\n");
-  o = rollbench("run --preset quick --scenes valley-sideways --integrators rkmk-bs32-adaptive,odeint-dopri5-adaptive,rk4 "
-                "--tol 1e-6 --h 0.05 --repeats 1 --no-stability --controller pid --out " +
-                report.string());
+  EXPECT_EQ(o.err,
+            "rollbench: 'controller': unknown step-size controller 'p' (known: constant, library, i, pi, pid)\n");
+  o = rollbench(
+      "run --preset quick --scenes valley-sideways --integrators rkmk-bs32-adaptive,odeint-dopri5-adaptive,rk4 "
+      "--tol 1e-6 --h 0.05 --repeats 1 --no-stability --controller pid --out " +
+      report.string());
   ASSERT_EQ(o.code, 0) << o.err;
   std::ifstream in(report);
   const nlohmann::json j = nlohmann::json::parse(in);
@@ -192,7 +197,8 @@ TEST(Cli, TrajectoryControllerIsCheckedAndRecorded) {
   const std::string common = " --rtol 1e-6 --atol 1e-6 --t-end 2 --out " + csv.string();
   Outcome o = rollbench("trajectory valley-sideways --integrator rkmk-bs32-adaptive --controller p" + common);
   EXPECT_EQ(o.code, 2);
-  EXPECT_EQ(o.err, "rollbench: 'controller': unknown step-size controller 'p' (known: constant, library, i, pi, pid)\n");
+  EXPECT_EQ(o.err,
+            "rollbench: 'controller': unknown step-size controller 'p' (known: constant, library, i, pi, pid)\n");
   // the summary's cost line: "  steps N, rejected M, rhs evals K, controller C"
   auto cost_line = [&](const std::string& integrator, const std::string& controller) {
     const Outcome r = rollbench("trajectory valley-sideways --integrator " + integrator +
@@ -207,7 +213,8 @@ TEST(Cli, TrajectoryControllerIsCheckedAndRecorded) {
   EXPECT_EQ(pi.substr(pi.rfind(", controller ")), ", controller pi");
   EXPECT_EQ(pid.substr(pid.rfind(", controller ")), ", controller pid");
   EXPECT_NE(pi.substr(0, pi.find(", rejected")), pid.substr(0, pid.find(", rejected")));
-  const std::string library = cost_line("odeint-dopri5-adaptive", ""), kept = cost_line("odeint-dopri5-adaptive", "pid");
+  const std::string library = cost_line("odeint-dopri5-adaptive", ""),
+                    kept = cost_line("odeint-dopri5-adaptive", "pid");
   EXPECT_EQ(kept, library);
   EXPECT_EQ(kept.substr(kept.rfind(", controller ")), ", controller library");
 }

@@ -55,8 +55,10 @@ TEST(Comparisons, ErrorMaxCoversTheGridAndBoundsTheErrorAtTheEnd) {
   const SweepScene& s = scenes.front();
   ASSERT_EQ(s.times.size(), 8u);  // every 0.25 up to 2
   ASSERT_EQ(s.timed_times, std::vector<double>{2.0});
-  for (const auto& [method, h, tol] : {std::tuple{"rk4", 0.0625, kNaN}, {"rk4", 0.5, kNaN},
-                                       {"odeint-dopri5-adaptive", kNaN, 1e-6}, {"gsl-rkf45-adaptive", kNaN, 1e-6}}) {
+  for (const auto& [method, h, tol] : {std::tuple{"rk4", 0.0625, kNaN},
+                                       {"rk4", 0.5, kNaN},
+                                       {"odeint-dopri5-adaptive", kNaN, 1e-6},
+                                       {"gsl-rkf45-adaptive", kNaN, 1e-6}}) {
     const RunRecord x = run_one(s, method, h, tol);
     ASSERT_EQ(x.status, Status::ok) << method;
     EXPECT_EQ(x.error.points, 1);

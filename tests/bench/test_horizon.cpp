@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <filesystem>
-
 #include <nlohmann/json.hpp>
 
 #include "bench/lib/horizon.hpp"
@@ -150,8 +149,9 @@ TEST(Horizon, BadOptionsAreRefusedWithTheirNames) {
     check_horizon(s);
     ADD_FAILURE();
   } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "'horizon-integrators': 'rkmk-dp54-adaptive' is adaptive: the horizon study takes "
-                           "fixed steps");
+    EXPECT_STREQ(e.what(),
+                 "'horizon-integrators': 'rkmk-dp54-adaptive' is adaptive: the horizon study takes "
+                 "fixed steps");
   }
   s = small_study(999);
   EXPECT_THROW(check_horizon(s), InputError);
@@ -168,8 +168,9 @@ using testing::slurp;
 TEST(HorizonCli, OptionsRunTheStudyIntoTheReportAndShardsMerge) {
   const fs::path a = testing::cli_temp_file("horizon-a.json"), b = testing::cli_temp_file("horizon-b.json"),
                  merged = testing::cli_temp_file("horizon-merged.json");
-  const std::string common = "run --scenes plane --integrators rk4 --h 0.25 --repeats 0 --horizon-steps 2000 "
-                             "--horizon-scenes plane --horizon-integrators rk4,rkmk4,cf4 ";
+  const std::string common =
+      "run --scenes plane --integrators rk4 --h 0.25 --repeats 0 --horizon-steps 2000 "
+      "--horizon-scenes plane --horizon-integrators rk4,rkmk4,cf4 ";
   testing::CliOutcome o = run_rollbench(common + "--shard 0/2 --out " + a.string());
   ASSERT_EQ(o.code, 0) << o.err;
   EXPECT_NE(o.err.find("horizon: rk4 on plane: ok"), std::string::npos) << o.err;
@@ -196,12 +197,14 @@ TEST(HorizonCli, BadOptionsExitWithTwo) {
   const std::string base = "run --scenes plane --integrators rk4 --h 0.25 --repeats 0 ";
   testing::CliOutcome o = run_rollbench(base + "--horizon-steps 12.5" + out);
   EXPECT_EQ(o.code, 2);
-  EXPECT_EQ(o.err, "rollbench: 'horizon-steps': expected a whole number of steps from 1000 to 1e8 (e.g. 100000 or "
-                   "1e6), got '12.5'\n");
+  EXPECT_EQ(o.err,
+            "rollbench: 'horizon-steps': expected a whole number of steps from 1000 to 1e8 (e.g. 100000 or "
+            "1e6), got '12.5'\n");
   o = run_rollbench(base + "--horizon-steps 1e4 --horizon-integrators rk4,gsl-rkf45-adaptive" + out);
   EXPECT_EQ(o.code, 2);
-  EXPECT_EQ(o.err, "rollbench: 'horizon-integrators': 'gsl-rkf45-adaptive' is adaptive: the horizon study takes "
-                   "fixed steps\n");
+  EXPECT_EQ(o.err,
+            "rollbench: 'horizon-integrators': 'gsl-rkf45-adaptive' is adaptive: the horizon study takes "
+            "fixed steps\n");
   o = run_rollbench(base + "--no-horizon --horizon-steps 1e4" + out);
   EXPECT_EQ(o.code, 2);
   EXPECT_NE(o.err.find("'no-horizon'"), std::string::npos) << o.err;

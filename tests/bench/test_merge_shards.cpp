@@ -50,11 +50,23 @@ TEST(MergeShards, RepeatedOrMixedShardsAreRefused) {
 // A shard's runs are parsed into what the fits read: a run a fit cannot
 // read is refused with the shard's file and the key, not a JSON exception.
 TEST(MergeShards, ARunTheFitsCannotReadNamesItsFileAndKey) {
-  const json run = {{"index", 0}, {"scene", "plane"}, {"integrator", "rk4"}, {"adaptive", false},
-                    {"declared_order", 4}, {"declared_rotation_order", 4}, {"h", 0.5}, {"rtol", nullptr},
-                    {"stop_time", 1.0}, {"steps", 2},
-                    {"error", {{"contact", 1e-3}, {"centre", 1e-3}, {"omega", nullptr}, {"rotation", 1e-4},
-                               {"worst", 1e-3}, {"below_floor", {"omega"}}}}};
+  const json run = {{"index", 0},
+                    {"scene", "plane"},
+                    {"integrator", "rk4"},
+                    {"adaptive", false},
+                    {"declared_order", 4},
+                    {"declared_rotation_order", 4},
+                    {"h", 0.5},
+                    {"rtol", nullptr},
+                    {"stop_time", 1.0},
+                    {"steps", 2},
+                    {"error",
+                     {{"contact", 1e-3},
+                      {"centre", 1e-3},
+                      {"omega", nullptr},
+                      {"rotation", 1e-4},
+                      {"worst", 1e-3},
+                      {"below_floor", {"omega"}}}}};
   auto merged_with = [&](const json& bad) -> std::string {
     json second = empty_shard(1, 2);
     second["runs"] = {bad};

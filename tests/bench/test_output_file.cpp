@@ -65,7 +65,8 @@ TEST(OutputFile, AFailureBeforeCommitLeavesTheOldFileAndNoTemporary) {
 
 TEST(OutputFile, AnUnwritablePlaceIsRefusedAtOnce) {
   Folder folder;
-  for (const std::string& bad : std::vector<std::string>{"/nonexistent/dir/x.csv", folder.path.string(), folder.path.string() + "/"}) {
+  for (const std::string& bad :
+       std::vector<std::string>{"/nonexistent/dir/x.csv", folder.path.string(), folder.path.string() + "/"}) {
     try {
       OutputFile file(bad, "out");
       ADD_FAILURE() << bad << " was taken";

@@ -32,7 +32,8 @@ const json& quick_report() {
   return report;
 }
 
-void expect_keys(const json& j, std::initializer_list<std::pair<const char*, json::value_t>> keys, const std::string& where) {
+void expect_keys(const json& j, std::initializer_list<std::pair<const char*, json::value_t>> keys,
+                 const std::string& where) {
   for (const auto& [key, type] : keys) {
     ASSERT_TRUE(j.contains(key)) << where << " lacks '" << key << "'";
     if (type == json::value_t::number_float) {
@@ -46,29 +47,57 @@ void expect_keys(const json& j, std::initializer_list<std::pair<const char*, jso
 TEST(Report, QuickPresetFollowsTheSchemaAndRoundTrips) {
   const json& r = quick_report();
   using t = json::value_t;
-  expect_keys(r, {{"schema", t::string}, {"created", t::string}, {"git", t::string}, {"machine", t::object},
-                  {"build", t::object}, {"runs", t::array}, {"orders", t::array}, {"references", t::array},
-                  {"stability", t::object}, {"tolerance_fits", t::array}, {"timed_call", t::object}},
+  expect_keys(r,
+              {{"schema", t::string},
+               {"created", t::string},
+               {"git", t::string},
+               {"machine", t::object},
+               {"build", t::object},
+               {"runs", t::array},
+               {"orders", t::array},
+               {"references", t::array},
+               {"stability", t::object},
+               {"tolerance_fits", t::array},
+               {"timed_call", t::object}},
               "report");
   EXPECT_EQ(r["schema"], "rollbench.report/2");
   expect_keys(r["machine"], {{"cpu", t::string}, {"cores", t::number_unsigned}, {"os", t::string}}, "machine");
   expect_keys(r["build"], {{"compiler", t::string}, {"flags", t::string}, {"type", t::string}}, "build");
   ASSERT_FALSE(r["runs"].empty());
   for (const json& run : r["runs"]) {
-    expect_keys(run, {{"scene", t::string}, {"integrator", t::string}, {"family", t::string},
-                      {"declared_order", t::number_integer}, {"adaptive", t::boolean}, {"h", t::number_float},
-                      {"rtol", t::number_float}, {"atol", t::number_float}, {"status", t::string},
-                      {"stop_time", t::number_float}, {"steps", t::number_integer}, {"rejected", t::number_integer},
-                      {"rhs_evals", t::number_integer}, {"wall_s", t::object}, {"error", t::object},
-                      {"drift", t::object}, {"final", t::object}, {"error_max", t::object},
-                      {"timed_outputs", t::number_unsigned}},
+    expect_keys(run,
+                {{"scene", t::string},
+                 {"integrator", t::string},
+                 {"family", t::string},
+                 {"declared_order", t::number_integer},
+                 {"adaptive", t::boolean},
+                 {"h", t::number_float},
+                 {"rtol", t::number_float},
+                 {"atol", t::number_float},
+                 {"status", t::string},
+                 {"stop_time", t::number_float},
+                 {"steps", t::number_integer},
+                 {"rejected", t::number_integer},
+                 {"rhs_evals", t::number_integer},
+                 {"wall_s", t::object},
+                 {"error", t::object},
+                 {"drift", t::object},
+                 {"final", t::object},
+                 {"error_max", t::object},
+                 {"timed_outputs", t::number_unsigned}},
                 "run");
-    expect_keys(run["wall_s"], {{"median", t::number_float}, {"min", t::number_float}, {"max", t::number_float},
-                                {"samples", t::array}},
-                "wall_s");
+    expect_keys(
+        run["wall_s"],
+        {{"median", t::number_float}, {"min", t::number_float}, {"max", t::number_float}, {"samples", t::array}},
+        "wall_s");
     for (const char* errors : {"error", "error_max"})
-      expect_keys(run[errors], {{"reference", t::string}, {"contact", t::number_float}, {"centre", t::number_float},
-                                {"omega", t::number_float}, {"rotation", t::number_float}, {"worst", t::number_float}},
+      expect_keys(run[errors],
+                  {{"reference", t::string},
+                   {"contact", t::number_float},
+                   {"centre", t::number_float},
+                   {"omega", t::number_float},
+                   {"rotation", t::number_float},
+                   {"worst", t::number_float}},
                   errors);
     EXPECT_EQ(run["timed_outputs"], 1u) << "the quick preset times the run to t_end alone";
     EXPECT_EQ(run["adaptive"].get<bool>(), run["h"].is_null());
@@ -132,11 +161,15 @@ TEST(Report, TimedRunsCountTheirValidityChecksAsTheirEvaluations) {
 
 TEST(Report, ObservedOrdersOfTheQuickPreset) {
   const json& r = quick_report();
-  struct Expect { const char* method; const char* component; double order; };
-  for (const Expect e : {Expect{"euler", "contact", 1}, Expect{"exp-euler", "contact", 1}, Expect{"rk4", "contact", 4},
-                         Expect{"rkmk4", "contact", 4}, Expect{"rkmk4", "rotation", 4},
-                         Expect{"rkmk4-seminar", "rotation", 3}, Expect{"odeint-rk4", "contact", 4},
-                         Expect{"gsl-rk4", "contact", 4}})
+  struct Expect {
+    const char* method;
+    const char* component;
+    double order;
+  };
+  for (const Expect e :
+       {Expect{"euler", "contact", 1}, Expect{"exp-euler", "contact", 1}, Expect{"rk4", "contact", 4},
+        Expect{"rkmk4", "contact", 4}, Expect{"rkmk4", "rotation", 4}, Expect{"rkmk4-seminar", "rotation", 3},
+        Expect{"odeint-rk4", "contact", 4}, Expect{"gsl-rk4", "contact", 4}})
     EXPECT_NEAR(observed(r, "valley-sideways", e.method, e.component), e.order, 0.2) << e.method << " " << e.component;
   // every verdict is one of three, and a clean fourth-order method's are as declared
   for (const json& o : r["orders"])

@@ -18,20 +18,38 @@ using testing::slurp;
 
 // A peer file with one solve: the trajectory an adaptive rollbench method wrote.
 json peer_file(const std::filesystem::path& csv) {
-  json run = {{"scene", "plane"}, {"integrator", "peer-dp54"}, {"family", "peer"}, {"declared_order", 5},
-              {"declared_order_text", "5(4)"}, {"needs_jacobian", false}, {"rtol", 1e-6}, {"atol", 1e-6},
-              {"status", "ok"}, {"message", ""}, {"trajectory", csv.filename().string()},
-              {"wall_s", {0.002, 0.001, 0.003}}, {"steps", 40}, {"rhs_evals", 280}, {"jacobian_evals", 0},
+  json run = {{"scene", "plane"},
+              {"integrator", "peer-dp54"},
+              {"family", "peer"},
+              {"declared_order", 5},
+              {"declared_order_text", "5(4)"},
+              {"needs_jacobian", false},
+              {"rtol", 1e-6},
+              {"atol", 1e-6},
+              {"status", "ok"},
+              {"message", ""},
+              {"trajectory", csv.filename().string()},
+              {"wall_s", {0.002, 0.001, 0.003}},
+              {"steps", 40},
+              {"rhs_evals", 280},
+              {"jacobian_evals", 0},
               {"validity_checks", 9}};
-  return {{"schema", "rollbench.peers/1"}, {"peer", "test"}, {"t_end", 2.0}, {"dt_out", nullptr},
-          {"rhs_cost", {{{"scene", "plane"}, {"python_s_per_call", 1e-6}}}}, {"runs", {run}}};
+  return {{"schema", "rollbench.peers/1"},
+          {"peer", "test"},
+          {"t_end", 2.0},
+          {"dt_out", nullptr},
+          {"rhs_cost", {{{"scene", "plane"}, {"python_s_per_call", 1e-6}}}},
+          {"runs", {run}}};
 }
 
 TEST(ScorePeers, APeersSolveIsAReportRunWithTheErrorsScoreGivesIt) {
   const std::filesystem::path csv = cli_temp_file("peer.csv"), peers = cli_temp_file("peers.json");
   const std::filesystem::path report = cli_temp_file("peer-report.json"), score = cli_temp_file("peer-score.json");
   ASSERT_EQ(run_rollbench("trajectory plane --integrator rkmk-dp54-adaptive --rtol 1e-6 --atol 1e-6 --dt-out 0.25 "
-                          "--t-end 2 --out " + csv.string()).code, 0);
+                          "--t-end 2 --out " +
+                          csv.string())
+                .code,
+            0);
   std::ofstream(peers) << peer_file(csv).dump();
   const testing::CliOutcome o = run_rollbench("score --peers " + peers.string() + " --out " + report.string());
   ASSERT_EQ(o.code, 0) << o.err;
@@ -60,7 +78,8 @@ TEST(ScorePeers, AMalformedPeerFileNamesTheKey) {
   json p = peer_file(csv);
   p["runs"][0].erase("steps");
   std::ofstream(peers) << p.dump();
-  testing::CliOutcome o = run_rollbench("score --peers " + peers.string() + " --out " + cli_temp_file("x.json").string());
+  testing::CliOutcome o =
+      run_rollbench("score --peers " + peers.string() + " --out " + cli_temp_file("x.json").string());
   EXPECT_EQ(o.code, 2);
   EXPECT_EQ(o.err, "rollbench: 'runs[0].steps': '" + peers.string() + "': is missing\n");
   p = peer_file(csv);

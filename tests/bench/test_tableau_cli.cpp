@@ -36,11 +36,13 @@ const char* const kBs32 = R"({"name": "bs-file", "order": 3, "err_order": 2,
 
 TEST(TableauCli, RunMeasuresTheDeclaredOrderOfRkAndRkmk) {
   const fs::path report = scratch("report.json");
-  const robustness::CliOutcome r = robustness::rollbench("run --preset quick --scenes bowl-planar --h 2^-3..2^-7 --tol 1e-5,1e-7 "
-                                  "--repeats 1 --no-stability --tableau " + tableau_file("ral3.json", kRalston).string() +
-                                  " --tableau " + tableau_file("bs.json", kBs32).string() +
-                                  " --integrators rk-ral3,rkmk-ral3,rk-bs-file,rkmk-bs-file,rk-bs-file-adaptive,"
-                                  "rkmk-bs-file-adaptive --out " + report.string());
+  const robustness::CliOutcome r = robustness::rollbench(
+      "run --preset quick --scenes bowl-planar --h 2^-3..2^-7 --tol 1e-5,1e-7 "
+      "--repeats 1 --no-stability --tableau " +
+      tableau_file("ral3.json", kRalston).string() + " --tableau " + tableau_file("bs.json", kBs32).string() +
+      " --integrators rk-ral3,rkmk-ral3,rk-bs-file,rkmk-bs-file,rk-bs-file-adaptive,"
+      "rkmk-bs-file-adaptive --out " +
+      report.string());
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(slurp(report));
   std::map<std::string, const nlohmann::json*> orders;
@@ -89,15 +91,15 @@ TEST(TableauCli, ListAndTrajectoryTakeTheFileToo) {
   ASSERT_EQ(list.code, 0) << list.err;
   EXPECT_NE(list.out.find("  rk-ral3 "), std::string::npos);
   EXPECT_NE(list.out.find("  rkmk-ral3 "), std::string::npos);
-  const robustness::CliOutcome traj = robustness::rollbench("trajectory plane --tableau " + file + " --integrator rkmk-ral3 --h 0.01 --out " +
-                                     scratch("ral3.csv").string());
+  const robustness::CliOutcome traj = robustness::rollbench(
+      "trajectory plane --tableau " + file + " --integrator rkmk-ral3 --h 0.01 --out " + scratch("ral3.csv").string());
   ASSERT_EQ(traj.code, 0) << traj.err;
   EXPECT_NE(traj.out.find("rkmk-ral3 on plane: ok"), std::string::npos) << traj.out;
 }
 
 TEST(TableauCli, ABadFileExitsWithTwoNamingTheFileKeyAndTree) {
-  const std::string bad = tableau_file("bad.json", std::string(kRalston).replace(std::string(kRalston).find("\"order\": 3"),
-                                                                                   10, "\"order\": 4"))
+  const std::string bad = tableau_file("bad.json", std::string(kRalston).replace(
+                                                       std::string(kRalston).find("\"order\": 3"), 10, "\"order\": 4"))
                               .string();
   robustness::CliOutcome r = robustness::rollbench("list --tableau " + bad);
   EXPECT_EQ(r.code, 2);
@@ -115,11 +117,12 @@ TEST(TableauCli, ABadFileExitsWithTwoNamingTheFileKeyAndTree) {
   const std::string ok = tableau_file("ral3.json", kRalston).string();
   r = robustness::rollbench("list --tableau " + ok + " --tableau " + ok);
   EXPECT_EQ(r.code, 2);
-  EXPECT_EQ(r.err, "rollbench: tableau file '" + ok + "': 'name': integrator 'rk-ral3' is already registered; "
-                   "rename the tableau\n");
+  EXPECT_EQ(r.err, "rollbench: tableau file '" + ok +
+                       "': 'name': integrator 'rk-ral3' is already registered; "
+                       "rename the tableau\n");
   // a file that is not there
   r = robustness::rollbench("trajectory plane --tableau /nonexistent.json --integrator rk4 --h 0.1 --out " +
-                     scratch("x.csv").string());
+                            scratch("x.csv").string());
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err, "rollbench: 'tableau': cannot read the tableau file '/nonexistent.json'\n");
 }

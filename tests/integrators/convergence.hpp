@@ -21,9 +21,10 @@ struct EndErrors {
 
 inline EndErrors end_errors(const Problem& problem, const FlatState& y, const FlatState& ref) {
   const RollingBall& m = problem.model();
-  const Vec3 w = m.omega_from_momentum(rotation_of(y), m.normal_at(y[kOffsetAlpha], y[kOffsetAlpha + 1]), Vec3(momentum_of(y)));
-  const Vec3 w_ref =
-      m.omega_from_momentum(rotation_of(ref), m.normal_at(ref[kOffsetAlpha], ref[kOffsetAlpha + 1]), Vec3(momentum_of(ref)));
+  const Vec3 w =
+      m.omega_from_momentum(rotation_of(y), m.normal_at(y[kOffsetAlpha], y[kOffsetAlpha + 1]), Vec3(momentum_of(y)));
+  const Vec3 w_ref = m.omega_from_momentum(rotation_of(ref), m.normal_at(ref[kOffsetAlpha], ref[kOffsetAlpha + 1]),
+                                           Vec3(momentum_of(ref)));
   return {(contact_of(y) - contact_of(ref)).norm(), (w - w_ref).norm(),
           rotation_angle_between(rotation_of(ref), rotation_of(y))};
 }
@@ -66,9 +67,9 @@ struct Convergence {
 // The ladder of steps a convergence measurement runs, and the floor below
 // which an error is rounding (or the reference's own error), per component.
 struct Ladder {
-  double h0 = 0.5;     // the first step
-  double h_min = 1e-4; // no step below this
-  double ratio = 2.0;  // h falls by this factor
+  double h0 = 0.5;      // the first step
+  double h_min = 1e-4;  // no step below this
+  double ratio = 2.0;   // h falls by this factor
   // errors below 10 * floor are not fitted; a reference good to ~floor / 10
   EndErrors floor{1e-14, 1e-14, 1e-14};
   // > 0: floor is the rounding of a run of this many steps, and a run of n

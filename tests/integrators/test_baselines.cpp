@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "integrators/steppers/baselines.hpp"
 #include "integrators/registry.hpp"
+#include "integrators/steppers/baselines.hpp"
 #include "problems/scene.hpp"
 #include "problems/so3.hpp"
 #include "tests/integrators/convergence.hpp"
@@ -16,8 +16,8 @@
 namespace rb {
 namespace {
 
-using testing::valley;
 using testing::every;
+using testing::valley;
 
 TEST(Baseline, RegisteredWithTheirFamilies) {
   EXPECT_EQ(find_integrator("rk4-projected").family(), "projection");

@@ -68,7 +68,7 @@ const Problem& chaplygin_valley() {
 }
 
 const std::vector<std::string>& new_methods() {
-  static const std::vector<std::string> names = {"cf4",           "cg3",          "cg4a",         "rkmk4-cayley",
+  static const std::vector<std::string> names = {"cf4",          "cg3",          "cg4a",         "rkmk4-cayley",
                                                  "cf4-reversed", "cg3-reversed", "cg4a-reversed"};
   return names;
 }

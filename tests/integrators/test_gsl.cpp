@@ -1,15 +1,14 @@
 // The GSL odeiv2 adapters: what is registered, the counts (GSL's own, stated
 // honestly), outputs on the requested times, the implicit steppers' orders,
 // and failures as statuses (never an abort from GSL's error handler).
-#include <gtest/gtest.h>
-
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
+#include <gtest/gtest.h>
 
 #include <thread>
 
-#include "integrators/steppers/gsl.hpp"
 #include "integrators/registry.hpp"
+#include "integrators/steppers/gsl.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"
@@ -40,10 +39,10 @@ TEST(GslRegistry, NamesOrdersAndJacobians) {
     bool adaptive, jacobian;
   };
   const Expected expected[] = {
-      {"gsl-rk2", 3, false, false},          {"gsl-rk4", 4, false, false},
-      {"gsl-rkf45", 5, false, false},        {"gsl-rkck", 5, false, false},
-      {"gsl-rk1imp", 1, false, true},        {"gsl-rk2imp", 2, false, true},
-      {"gsl-rk4imp", 4, false, true},        {"gsl-rk2-adaptive", 3, true, false},
+      {"gsl-rk2", 3, false, false},           {"gsl-rk4", 4, false, false},
+      {"gsl-rkf45", 5, false, false},         {"gsl-rkck", 5, false, false},
+      {"gsl-rk1imp", 1, false, true},         {"gsl-rk2imp", 2, false, true},
+      {"gsl-rk4imp", 4, false, true},         {"gsl-rk2-adaptive", 3, true, false},
       {"gsl-rkf45-adaptive", 5, true, false}, {"gsl-rkck-adaptive", 5, true, false},
       {"gsl-rk8pd-adaptive", 8, true, false}, {"gsl-rk4imp-adaptive", 4, true, true},
       {"gsl-bsimp-adaptive", 12, true, true}, {"gsl-msadams-adaptive", 12, true, false},

@@ -9,13 +9,13 @@
 #include <cmath>
 #include <map>
 
-#include "integrators/steppers/munthe_kaas_adaptive.hpp"
-#include "integrators/order_conditions.hpp"
-#include "integrators/registry.hpp"
 #include "integrators/methods/bogacki_shampine32.hpp"
 #include "integrators/methods/dormand_prince54.hpp"
 #include "integrators/methods/dormand_prince853.hpp"
 #include "integrators/methods/fehlberg78.hpp"
+#include "integrators/order_conditions.hpp"
+#include "integrators/registry.hpp"
+#include "integrators/steppers/munthe_kaas_adaptive.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"
@@ -154,8 +154,8 @@ TEST(LieAdaptive, RegisteredAsAdaptiveLieMethods) {
 TEST(LieAdaptive, RotationStaysOnSO3OnEveryShippedScene) {
   for (const std::string& name : shipped_scene_names()) {
     const Problem& p = shipped_scene(name);
-    for (const char* method : {"rkmk-bs32-adaptive", "rkmk-dp54-adaptive", "rkmk-dp853-adaptive",
-                               "rkmk-f78-adaptive", "rkmk5", "rkmk8"}) {
+    for (const char* method :
+         {"rkmk-bs32-adaptive", "rkmk-dp54-adaptive", "rkmk-dp853-adaptive", "rkmk-f78-adaptive", "rkmk5", "rkmk8"}) {
       const Integrator& m = find_integrator(method);
       RunOptions o = tolerance_every(1e-8, 0.1, p.t_end());
       o.h = m.adaptive() ? 0.0 : 0.01;

@@ -24,8 +24,8 @@
 namespace rb {
 namespace {
 
-using testing::valley;
 using testing::every;
+using testing::valley;
 
 // Ralston's third-order method: a tableau the suite does not ship.
 Tableau ralston3() {
@@ -121,7 +121,11 @@ TEST(MuntheKaas, Rkmk4KeepsRotationForAMillionSteps) {
 // benchmark is about, documented by assertions.
 TEST(MuntheKaas, ClassicalMethodsDriftOffSO3AndTheDriftGrows) {
   const Problem bowl = make_problem(load_scene("bowl-3d"));
-  struct Case { const char* name; double h; double min_final_defect; };
+  struct Case {
+    const char* name;
+    double h;
+    double min_final_defect;
+  };
   for (const Case c : {Case{"rk4", 0.02, 1e-9}, Case{"euler", 1e-3, 1e-3}}) {
     const RunResult run = find_integrator(c.name).integrate(bowl, every(1.0, 100.0, c.h));
     ASSERT_EQ(run.status, Status::ok) << c.name << ": " << run.message;

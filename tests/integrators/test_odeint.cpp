@@ -5,8 +5,8 @@
 
 #include <thread>
 
-#include "integrators/steppers/odeint.hpp"
 #include "integrators/registry.hpp"
+#include "integrators/steppers/odeint.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"
@@ -46,11 +46,16 @@ TEST(OdeintRegistry, NamesOrdersAndKinds) {
     bool adaptive;
   };
   const Expected expected[] = {
-      {"odeint-euler", 1, false},          {"odeint-rk4", 4, false},
-      {"odeint-cash-karp54", 5, false},    {"odeint-dopri5", 5, false},
-      {"odeint-fehlberg78", 8, false},     {"odeint-abm4", 4, false},
-      {"odeint-abm5", 5, false},           {"odeint-dopri5-adaptive", 5, true},
-      {"odeint-cash-karp54-adaptive", 5, true}, {"odeint-fehlberg78-adaptive", 8, true},
+      {"odeint-euler", 1, false},
+      {"odeint-rk4", 4, false},
+      {"odeint-cash-karp54", 5, false},
+      {"odeint-dopri5", 5, false},
+      {"odeint-fehlberg78", 8, false},
+      {"odeint-abm4", 4, false},
+      {"odeint-abm5", 5, false},
+      {"odeint-dopri5-adaptive", 5, true},
+      {"odeint-cash-karp54-adaptive", 5, true},
+      {"odeint-fehlberg78-adaptive", 8, true},
       {"odeint-bulirsch-stoer", 8, true},
   };
   for (const Expected& e : expected) {
@@ -70,9 +75,8 @@ TEST(OdeintCounters, FixedStepEvaluationsPerStep) {
   };
   // dopri5 is FSAL: one evaluation at the start, then 6 a step; abm4 takes
   // 3 runge_kutta4 steps (4 each) to start, then 2 a step (PECE)
-  const Expected expected[] = {{"odeint-euler", 1, 0},       {"odeint-rk4", 4, 0},
-                               {"odeint-cash-karp54", 6, 0}, {"odeint-dopri5", 6, 1},
-                               {"odeint-fehlberg78", 13, 0}, {"odeint-abm4", 2, 6},
+  const Expected expected[] = {{"odeint-euler", 1, 0},  {"odeint-rk4", 4, 0},         {"odeint-cash-karp54", 6, 0},
+                               {"odeint-dopri5", 6, 1}, {"odeint-fehlberg78", 13, 0}, {"odeint-abm4", 2, 6},
                                {"odeint-abm5", 2, 8}};
   for (const Expected& e : expected) {
     const RunResult r = find_integrator(e.name).integrate(valley(), fixed(0.01, 1.0));

@@ -6,8 +6,6 @@
 #include <set>
 #include <vector>
 
-#include "integrators/order_conditions.hpp"
-#include "integrators/tableau.hpp"
 #include "integrators/methods/dormand_prince54.hpp"
 #include "integrators/methods/dormand_prince853.hpp"
 #include "integrators/methods/euler.hpp"
@@ -16,6 +14,8 @@
 #include "integrators/methods/kutta3.hpp"
 #include "integrators/methods/rk38.hpp"
 #include "integrators/methods/rk4.hpp"
+#include "integrators/order_conditions.hpp"
+#include "integrators/tableau.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {
@@ -58,8 +58,8 @@ TEST(OrderConditions, TreeCountsPerOrderAreTheKnownOnes) {
 TEST(OrderConditions, TreesHaveBracketNamesAndTheirDensities) {
   // order <= 4 in full, and the tall and bushy trees of order 8
   const std::vector<std::pair<std::string, double>> known = {
-      {"τ", 1},       {"[τ]", 2},         {"[τ²]", 3},         {"[[τ]]", 6},          {"[τ³]", 4},
-      {"[τ[τ]]", 8},  {"[[τ²]]", 12},     {"[[[τ]]]", 24},     {"[τ⁷]", 8},           {"[[[[[[[τ]]]]]]]", 40320}};
+      {"τ", 1},      {"[τ]", 2},     {"[τ²]", 3},     {"[[τ]]", 6}, {"[τ³]", 4},
+      {"[τ[τ]]", 8}, {"[[τ²]]", 12}, {"[[[τ]]]", 24}, {"[τ⁷]", 8},  {"[[[[[[[τ]]]]]]]", 40320}};
   for (const auto& [name, density] : known) {
     SCOPED_TRACE(name);
     EXPECT_EQ(tree_named(name).density, density);
@@ -112,7 +112,8 @@ TEST(OrderConditions, APerturbedWeightNamesItsFirstFailingTreeAndResidual) {
   EXPECT_EQ(r.failure->tree, "[[τ]]");
   EXPECT_NEAR(r.failure->residual, -0.25 * d, 1e-15);
   EXPECT_NEAR(r.failure->expected, 1.0 / 6, 1e-15);
-  EXPECT_EQ(describe(*r.failure), "tree [[τ]] of order 3: Phi = 0.166416666666667, 1/gamma = 0.166666666666667, residual -2.500e-04");
+  EXPECT_EQ(describe(*r.failure),
+            "tree [[τ]] of order 3: Phi = 0.166416666666667, 1/gamma = 0.166666666666667, residual -2.500e-04");
   // below the tolerance it holds
   Plain tiny = plain(methods::rk4());
   tiny.b[1] += 1e-14;

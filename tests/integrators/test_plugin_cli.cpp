@@ -14,8 +14,8 @@
 namespace rb {
 namespace {
 
-using testing::example_stepper;
 using testing::cli_temp_file;
+using testing::example_stepper;
 using testing::run_rollbench;
 using testing::slurp;
 
@@ -30,7 +30,8 @@ TEST(PluginCli, RunSweepsTheExampleSteppersAndMeasuresTheirOrders) {
   const testing::CliOutcome o = run_rollbench(
       "run --preset quick --no-stability --repeats 1 --scenes bowl-planar --h 2^-4..2^-9 "
       "--integrators midpoint-plugin,exp-euler-plugin,midpoint,exp-euler --stepper " +
-      example_stepper("midpoint_stepper") + " --stepper " + example_stepper("lie_euler_stepper") + " --out " + report_path.string());
+      example_stepper("midpoint_stepper") + " --stepper " + example_stepper("lie_euler_stepper") + " --out " +
+      report_path.string());
   ASSERT_EQ(o.code, 0) << o.err;
   const nlohmann::json report = nlohmann::json::parse(slurp(report_path));
   // each plug-in measures as its built-in twin does (exp-euler's omega
@@ -100,7 +101,8 @@ TEST(PluginCli, AFailingStepperIsAFailedRunInTheReport) {
   const testing::CliOutcome o = run_rollbench(
       "run --preset quick --no-stability --repeats 1 --scenes valley-sideways --h 0.0625 "
       "--integrators fails-stepper,nan-stepper,rk4 --stepper " +
-      example_stepper("fails_stepper") + " --stepper " + example_stepper("nan_stepper") + " --out " + report_path.string());
+      example_stepper("fails_stepper") + " --stepper " + example_stepper("nan_stepper") + " --out " +
+      report_path.string());
   ASSERT_EQ(o.code, 0) << o.err;
   const nlohmann::json report = nlohmann::json::parse(slurp(report_path));
   ASSERT_EQ(report["runs"].size(), 3u);

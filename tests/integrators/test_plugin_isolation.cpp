@@ -17,9 +17,9 @@
 namespace rb {
 namespace {
 
+using testing::cli_temp_file;
 using testing::example_stepper;
 using testing::example_stepper_dir;
-using testing::cli_temp_file;
 using testing::run_rollbench;
 using testing::slurp;
 
@@ -39,11 +39,11 @@ const char* const kSweep = "run --preset quick --no-stability --repeats 2 --scen
 
 TEST(PluginIsolation, ACrashAnAbortAndAHangAreRowsOfTheReportAndTheSweepGoesOn) {
   const std::filesystem::path report_path = cli_temp_file("isolated.json");
-  const testing::CliOutcome o = run_rollbench(
-      std::string(kSweep) +
-      "--integrators crash-stepper,abort-stepper,hang-stepper,midpoint-plugin,rk4 --stepper-timeout 2" +
-      steppers({"crash_stepper", "abort_stepper", "hang_stepper", "midpoint_stepper"}) + " --out " +
-      report_path.string());
+  const testing::CliOutcome o =
+      run_rollbench(std::string(kSweep) +
+                    "--integrators crash-stepper,abort-stepper,hang-stepper,midpoint-plugin,rk4 --stepper-timeout 2" +
+                    steppers({"crash_stepper", "abort_stepper", "hang_stepper", "midpoint_stepper"}) + " --out " +
+                    report_path.string());
   ASSERT_EQ(o.code, 0) << o.err;  // failed runs are data: the sweep itself succeeded
   const nlohmann::json report = nlohmann::json::parse(slurp(report_path));
   ASSERT_EQ(report["runs"].size(), 5u);
@@ -85,21 +85,23 @@ TEST(PluginIsolation, InProcessOnRequestGivesTheSameNumbers) {
   std::map<std::string, nlohmann::json> y = runs_by_name(nlohmann::json::parse(slurp(in_process)));
   ASSERT_EQ(x.size(), 2u);
   for (auto& [name, run] : x) {
-    for (const char* key : {"status", "steps", "rhs_evals", "exp_evals", "validity_checks", "error", "error_max",
-                            "drift", "final"})
+    for (const char* key :
+         {"status", "steps", "rhs_evals", "exp_evals", "validity_checks", "error", "error_max", "drift", "final"})
       EXPECT_EQ(run[key], y[name][key]) << name << " " << key;
   }
 }
 
 TEST(PluginIsolation, TheIsolationOptionsAreChecked) {
-  const testing::CliOutcome a = run_rollbench("trajectory bowl-planar --integrator rk4 --h 0.1 --out /dev/null "
-                                              "--stepper-isolation thread");
+  const testing::CliOutcome a = run_rollbench(
+      "trajectory bowl-planar --integrator rk4 --h 0.1 --out /dev/null "
+      "--stepper-isolation thread");
   EXPECT_EQ(a.code, 2);
   EXPECT_EQ(a.err,
             "rollbench: 'stepper-isolation': expected process (each plug-in run in a child process) or none "
             "(in-process), got 'thread'\n");
-  const testing::CliOutcome b = run_rollbench("trajectory bowl-planar --integrator rk4 --h 0.1 --out /dev/null "
-                                              "--stepper-timeout 0");
+  const testing::CliOutcome b = run_rollbench(
+      "trajectory bowl-planar --integrator rk4 --h 0.1 --out /dev/null "
+      "--stepper-timeout 0");
   EXPECT_EQ(b.code, 2);
   EXPECT_EQ(b.err,
             "rollbench: 'stepper-timeout': the wall-clock limit of a plug-in run must be a finite number of seconds "
@@ -108,8 +110,9 @@ TEST(PluginIsolation, TheIsolationOptionsAreChecked) {
 
 TEST(PluginIsolation, ATrajectoryWhosePluginCrashesExitsThreeWithTheSignal) {
   const std::filesystem::path csv = cli_temp_file("crash.csv");
-  const testing::CliOutcome o = run_rollbench("trajectory valley-sideways --integrator crash-stepper --h 0.0625 --out " +
-                                              csv.string() + steppers({"crash_stepper"}));
+  const testing::CliOutcome o =
+      run_rollbench("trajectory valley-sideways --integrator crash-stepper --h 0.0625 --out " + csv.string() +
+                    steppers({"crash_stepper"}));
   EXPECT_EQ(o.code, 3);
   EXPECT_EQ(o.err,
             "rollbench: run stopped early at t = 0: crashed: stepper 'crash-stepper' crashed: its process was killed "
@@ -137,8 +140,8 @@ TEST(PluginIsolation, AFolderGivenAsStepperIsNamedAsOne) {
   const std::string folder = example_stepper_dir();
   const testing::CliOutcome o = run_rollbench("list --stepper " + folder);
   EXPECT_EQ(o.code, 2);
-  EXPECT_EQ(o.err, "rollbench: 'stepper': '" + folder +
-                       "' is a directory, not a stepper library (give the .so file in it)\n");
+  EXPECT_EQ(o.err,
+            "rollbench: 'stepper': '" + folder + "' is a directory, not a stepper library (give the .so file in it)\n");
 }
 
 // Bytes that are not UTF-8, from a plug-in's reason and from a scene path:
@@ -163,9 +166,10 @@ TEST(PluginIsolation, BytesThatAreNotUtf8DoNotLoseTheReport) {
   std::filesystem::copy_file(std::string(RB_SCENE_DIR) + "/valley-sideways.json", scene,
                              std::filesystem::copy_options::overwrite_existing);
   const std::filesystem::path second = cli_temp_file("utf8-path.json");
-  const testing::CliOutcome p = run_rollbench("run --preset quick --no-stability --repeats 1 --h 0.0625 "
-                                              "--integrators rk4 --scenes " +
-                                              scene.string() + " --out " + second.string());
+  const testing::CliOutcome p = run_rollbench(
+      "run --preset quick --no-stability --repeats 1 --h 0.0625 "
+      "--integrators rk4 --scenes " +
+      scene.string() + " --out " + second.string());
   ASSERT_EQ(p.code, 0) << p.err;
   const nlohmann::json by_path = nlohmann::json::parse(slurp(second));
   const std::string shown = cli_temp_file("scene-\xEF\xBF\xBD.json").string();

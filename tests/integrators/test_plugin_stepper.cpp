@@ -226,15 +226,18 @@ TEST(PluginStepper, ALieViewStateOffSo3IsTheStatusOffGroup) {
   const RunResult honest = load_plugin_stepper(example_stepper("lie_euler_stepper"))->integrate(problem, many);
   EXPECT_EQ(honest.status, Status::ok) << honest.message;
   EXPECT_LT(rotation_defect(rotation_of(honest.final_state)), 1e-3 * kOffGroupBound);
-  const RunResult flat = load_plugin_stepper(example_stepper("midpoint_stepper"))->integrate(problem, every_quarter(0.25, 2.0));
+  const RunResult flat =
+      load_plugin_stepper(example_stepper("midpoint_stepper"))->integrate(problem, every_quarter(0.25, 2.0));
   EXPECT_EQ(flat.status, Status::ok) << flat.message;
   EXPECT_GT(rotation_defect(rotation_of(flat.final_state)), kOffGroupBound);
 }
 
 TEST(PluginStepper, AFolderIsNamedAsOne) {
   const std::string folder = std::filesystem::temp_directory_path().string();
-  EXPECT_EQ(load_error(folder), "'stepper': '" + folder + "' is a directory, not a stepper library (give the .so file in it)");
-  EXPECT_EQ(load_error("/dev/null"), "'stepper': '/dev/null' is not a regular file (a device, FIFO or socket), not a stepper library");
+  EXPECT_EQ(load_error(folder),
+            "'stepper': '" + folder + "' is a directory, not a stepper library (give the .so file in it)");
+  EXPECT_EQ(load_error("/dev/null"),
+            "'stepper': '/dev/null' is not a regular file (a device, FIFO or socket), not a stepper library");
 }
 
 TEST(PluginStepper, ABrokenLibraryIsRefusedNamingTheFileAndTheSymbol) {

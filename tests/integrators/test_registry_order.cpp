@@ -8,13 +8,12 @@
 #include <cmath>
 #include <sstream>
 
-#include "problems/input_error.hpp"
-
 #include "integrators/registry.hpp"
+#include "problems/input_error.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"
-#include "tests/integrators/order_scene.hpp"
 #include "tests/integrators/fixtures.hpp"
+#include "tests/integrators/order_scene.hpp"
 #include "tests/registry_names.hpp"
 
 namespace rb {
@@ -162,8 +161,7 @@ bool within(double observed, int expected, Tolerance tolerance) {
 // ones (motion: contact point and omega; rotation: R), with the data that
 // shows why; empty when it passes.
 std::vector<std::string> order_failures(const Integrator& method, const Problem& problem, const FlatState& ref,
-                                        const testing::Ladder& ladder, Tolerance tolerance, int motion,
-                                        int rotation) {
+                                        const testing::Ladder& ladder, Tolerance tolerance, int motion, int rotation) {
   const testing::Convergence c = testing::measure_convergence(method, problem, kTEnd, ref, ladder);
   std::vector<std::string> failures;
   const auto fail = [&](const std::string& what, double observed, int expected) {

@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "bench/lib/report.hpp"
-#include "integrators/registry.hpp"
 #include "integrators/controllers/controller.hpp"
+#include "integrators/registry.hpp"
 #include "integrators/steppers/stepped_method.hpp"
 #include "integrators/steppers/tableau_methods.hpp"
 
@@ -28,9 +28,14 @@ struct RalstonStep {
 };
 
 std::unique_ptr<Integrator> ralston() {
-  return stepped_method({.name = "test-ralston", .family = "rk", .declared_order = 2, .controller = "constant",
+  return stepped_method({.name = "test-ralston",
+                         .family = "rk",
+                         .declared_order = 2,
+                         .controller = "constant",
                          .description = "Ralston's second-order method (the recipe's test)"},
-                        [](const Problem& p) { return RalstonStep{p, {}, {}, {}}; });
+                        [](const Problem& p) {
+                          return RalstonStep{p, {}, {}, {}};
+                        });
 }
 
 const Integrator& registered() {

@@ -32,11 +32,17 @@ std::string error_of(auto&& make) {
 }
 
 TEST(Tableau, RejectsWhatIsNotAnExplicitConsistentTableau) {
-  EXPECT_EQ(error_of([] { Tableau("x", 1, {0, 1, 0, 0}, {0.5, 0.5}, {1, 0}); }),
+  EXPECT_EQ(error_of([] {
+              Tableau("x", 1, {0, 1, 0, 0}, {0.5, 0.5}, {1, 0});
+            }),
             "'a': A must be strictly lower triangular for an explicit method (a[0][1] != 0)");
-  EXPECT_EQ(error_of([] { Tableau("x", 2, {0, 0, 1, 0}, {0.5, 0.5}, {0, 0.5}); }),
+  EXPECT_EQ(error_of([] {
+              Tableau("x", 2, {0, 0, 1, 0}, {0.5, 0.5}, {0, 0.5});
+            }),
             "'c': c[1] must equal the sum of row 1 of A");
-  EXPECT_EQ(error_of([] { Tableau("x", 3, {0, 0, 1, 0}, {0.5, 0.5}, {0, 1}); }),
+  EXPECT_EQ(error_of([] {
+              Tableau("x", 3, {0, 0, 1, 0}, {0.5, 0.5}, {0, 1});
+            }),
             "'order': tableau 'x' declares order 3 but satisfies the order conditions only to order 2 (tree [τ²] of "
             "order 3: Phi = 0.5, 1/gamma = 0.333333333333333, residual 1.667e-01)");
   EXPECT_EQ(error_of([] { Tableau("x", 1, {0, 0, 0}, {1.0}, {0}); }), "'a': A must be 1 x 1");

@@ -191,8 +191,9 @@ TEST(TableauFile, EachKindOfBadFileIsRefusedNamingTheFileAndTheKey) {
   EXPECT_EQ(error_of(with(kRalston3, R"("b": [0.2222222222222222, 0.3333333333333333, 0.4444444444444444],)", "")),
             f + "'b': missing required key (or give butcher instead of c, A and b)");
   EXPECT_EQ(error_of(with(kRalston3, R"("name": "ralston3",)", "")), f + "'name': missing required key");
-  EXPECT_EQ(error_of(with(kRalston3, R"("order": 3,)", R"("order": 3, "ordre": 3,)")),
-            f + "'ordre': unknown key (known: name, order, c, A, b, b_err, err_order, source, butcher, order_tolerance)");
+  EXPECT_EQ(
+      error_of(with(kRalston3, R"("order": 3,)", R"("order": 3, "ordre": 3,)")),
+      f + "'ordre': unknown key (known: name, order, c, A, b, b_err, err_order, source, butcher, order_tolerance)");
   EXPECT_EQ(error_of(with(kRalston3, R"("order": 3,)", R"("order": 3, "order": 2,)")),
             f + "'order': the key appears more than once");
   // wrong shapes

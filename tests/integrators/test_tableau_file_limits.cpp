@@ -62,8 +62,9 @@ TEST(TableauFileLimits, OrderToleranceIsChecked) {
 TEST(TableauFileLimits, ResidualsShowInTheDigitsPrinted) {
   // order 4 declared for a third-order table: Phi and 1/gamma differ in their printed digits
   const std::string e = error_of(ssp53(R"("order": 4, "order_tolerance": 1e-9, )"));
-  const std::string head = f + "'order': tableau 'ssp53' declares order 4 but satisfies the order conditions only to "
-                               "order 3 (tree ";
+  const std::string head = f +
+                           "'order': tableau 'ssp53' declares order 4 but satisfies the order conditions only to "
+                           "order 3 (tree ";
   ASSERT_EQ(e.rfind(head, 0), 0u) << e;
   double phi = 0, inv_gamma = 0, residual = 0;
   const auto at = e.find(": Phi = ");
@@ -111,9 +112,8 @@ TEST(TableauFileLimits, SeventeenStagesRunAsSeventeenEulerSubsteps) {
 
 TEST(TableauFileLimits, TheStageLimitIsNamedOnA) {
   EXPECT_EQ(parse_tableau_file(euler_substeps(kMaxStages), "t.json").tableau.stages(), kMaxStages);
-  EXPECT_EQ(error_of(euler_substeps(kMaxStages + 1)),
-            f + "'A': a tableau needs 1 to " + std::to_string(kMaxStages) + " stages, got " +
-                std::to_string(kMaxStages + 1));
+  EXPECT_EQ(error_of(euler_substeps(kMaxStages + 1)), f + "'A': a tableau needs 1 to " + std::to_string(kMaxStages) +
+                                                          " stages, got " + std::to_string(kMaxStages + 1));
 }
 
 TEST(TableauFileLimits, ListShowsTheEmbeddedOrder) {
@@ -130,7 +130,8 @@ TEST(TableauFileLimits, ListShowsTheEmbeddedOrder) {
     if (at == std::string::npos) return std::string("missing");
     return list.out.substr(at, list.out.find('\n', at) - at);
   };
-  EXPECT_NE(line_of("rk-bs-list-adaptive").find(" 3(2)  adaptive "), std::string::npos) << line_of("rk-bs-list-adaptive");
+  EXPECT_NE(line_of("rk-bs-list-adaptive").find(" 3(2)  adaptive "), std::string::npos)
+      << line_of("rk-bs-list-adaptive");
   EXPECT_NE(line_of("rkmk-bs-list-adaptive").find(" 3(2)  adaptive "), std::string::npos);
   EXPECT_NE(line_of("rk-bs-list").find("    3  fixed "), std::string::npos) << line_of("rk-bs-list");
   // the shipped pairs too

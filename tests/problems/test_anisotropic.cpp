@@ -4,9 +4,8 @@
 // every integrator, and R feeding back into the contact path.
 #include <gtest/gtest.h>
 
-#include <random>
-
 #include <nlohmann/json.hpp>
+#include <random>
 
 #include "integrators/registry.hpp"
 #include "problems/scene.hpp"
@@ -21,16 +20,16 @@ using testing::every;
 // A scene text with the given landscape, inertia and start velocity.
 Problem scene_with(const std::string& landscape, const nlohmann::json& inertia, const nlohmann::json& velocity,
                    double spin, double t_end) {
-  nlohmann::json s = {{"name", "aniso"},
-                      {"landscape", landscape},
-                      {"ball", {{"radius", 0.1}, {"mass", 1.0}}},
-                      {"start",
-                       {{"contact", {0.2, -0.1}},
-                        {"velocity", velocity},
-                        {"spin", spin},
-                        {"orientation", {0.8775825618903728, 0.15980851286806766, 0.3196170257361353,
-                                         0.3196170257361353}}}},
-                      {"t_end", t_end}};
+  nlohmann::json s = {
+      {"name", "aniso"},
+      {"landscape", landscape},
+      {"ball", {{"radius", 0.1}, {"mass", 1.0}}},
+      {"start",
+       {{"contact", {0.2, -0.1}},
+        {"velocity", velocity},
+        {"spin", spin},
+        {"orientation", {0.8775825618903728, 0.15980851286806766, 0.3196170257361353, 0.3196170257361353}}}},
+      {"t_end", t_end}};
   if (!inertia.is_null()) s["ball"]["inertia"] = inertia;
   return make_problem(parse_scene(s.dump()));
 }

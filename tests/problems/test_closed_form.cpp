@@ -180,8 +180,7 @@ TEST(ClosedForm, BowlNormalForceIsSeventeenCosMinusTenCos0) {
   const RunResult r = run(p, "rkmk4", 0.01, 1e-3);
   for (std::size_t i = 0; i < r.output.t.size(); ++i) {
     const double theta = std::asin(contact_of(r.output.y[i]).norm() / rho);
-    EXPECT_NEAR(p.model().derived(r.output.y[i]).normal_force, bowl_normal_force(m, g0, theta, theta0),
-                1e-9 * m * g0)
+    EXPECT_NEAR(p.model().derived(r.output.y[i]).normal_force, bowl_normal_force(m, g0, theta, theta0), 1e-9 * m * g0)
         << "t = " << r.output.t[i];
   }
   // at the exact state, with the exact theta(t): 1e-11 of m g0

@@ -17,8 +17,10 @@ namespace {
 // start: where the ball fits (a scene's start is checked)
 Problem scene_with(const std::string& landscape, double radius, double start_x = 0.0) {
   return make_problem(parse_scene(R"js({"name": "fit", "landscape": ")js" + landscape + R"js(",
-    "ball": {"radius": )js" + std::to_string(radius) + R"js(, "mass": 1.0},
-    "start": {"contact": [)js" + std::to_string(start_x) + R"js(, 0.0], "omega": [0, 0, 0]}, "t_end": 1.0})js"));
+    "ball": {"radius": )js" + std::to_string(radius) +
+                                  R"js(, "mass": 1.0},
+    "start": {"contact": [)js" + std::to_string(start_x) +
+                                  R"js(, 0.0], "omega": [0, 0, 0]}, "t_end": 1.0})js"));
 }
 
 // the start with its contact moved to (x, y) (the margins' curvature part

@@ -1,15 +1,14 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
-#include <unsupported/Eigen/AutoDiff>
-
 #include <array>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <numbers>
 #include <string>
+#include <unsupported/Eigen/AutoDiff>
 #include <vector>
 
 #include "problems/formula.hpp"
@@ -35,106 +34,138 @@ std::vector<ClosedForm> closed_forms() {
   const std::vector<Point> positive = {{0.3, 0.7}, {1.7, 0.4}, {2.5, 1.3}};
   const std::vector<Point> unit_disc = {{0.3, 0.2}, {-0.5, 0.4}, {0.1, -0.8}};
   return {
-      {"cos(x*pi + pi)/10 - y/10", [](double x, double y) -> Parts {
+      {"cos(x*pi + pi)/10 - y/10",
+       [](double x, double y) -> Parts {
          const double c = std::cos(kPi * x), s = std::sin(kPi * x);
          return {-c / 10 - y / 10, kPi * s / 10, -0.1, kPi * kPi * c / 10, 0, 0};
        }},
-      {"exp(-(x^2+y^2))", [](double x, double y) -> Parts {
+      {"exp(-(x^2+y^2))",
+       [](double x, double y) -> Parts {
          const double g = std::exp(-(x * x + y * y));
          return {g, -2 * x * g, -2 * y * g, (4 * x * x - 2) * g, 4 * x * y * g, (4 * y * y - 2) * g};
        }},
-      {"1 - sqrt(1 - x^2 - y^2)", [](double x, double y) -> Parts {
+      {"1 - sqrt(1 - x^2 - y^2)",
+       [](double x, double y) -> Parts {
          const double s = std::sqrt(1 - x * x - y * y), s3 = s * s * s;
          return {1 - s, x / s, y / s, (1 - y * y) / s3, x * y / s3, (1 - x * x) / s3};
-       }, unit_disc},
-      {"atan2(y, x)", [](double x, double y) -> Parts {
+       },
+       unit_disc},
+      {"atan2(y, x)",
+       [](double x, double y) -> Parts {
          const double r2 = x * x + y * y, r4 = r2 * r2;
          return {std::atan2(y, x), -y / r2, x / r2, 2 * x * y / r4, (y * y - x * x) / r4, -2 * x * y / r4};
        }},
-      {"hypot(x, y)", [](double x, double y) -> Parts {
+      {"hypot(x, y)",
+       [](double x, double y) -> Parts {
          const double r = std::hypot(x, y), r3 = r * r * r;
          return {r, x / r, y / r, y * y / r3, -x * y / r3, x * x / r3};
        }},
-      {"x^y", [](double x, double y) -> Parts {
+      {"x^y",
+       [](double x, double y) -> Parts {
          const double p = std::pow(x, y), l = std::log(x);
          return {p, y * p / x, p * l, y * (y - 1) * p / (x * x), p / x * (1 + y * l), p * l * l};
-       }, positive},
-      {"2^-x", [](double x, double) -> Parts {
+       },
+       positive},
+      {"2^-x",
+       [](double x, double) -> Parts {
          const double p = std::pow(2.0, -x), l = std::log(2.0);
          return {p, -l * p, 0, l * l * p, 0, 0};
        }},
-      {"sinh(x)*cosh(y)", [](double x, double y) -> Parts {
+      {"sinh(x)*cosh(y)",
+       [](double x, double y) -> Parts {
          const double sx = std::sinh(x), cx = std::cosh(x), sy = std::sinh(y), cy = std::cosh(y);
          return {sx * cy, cx * cy, sx * sy, sx * cy, cx * sy, sx * cy};
        }},
-      {"tanh(x*y)", [](double x, double y) -> Parts {
+      {"tanh(x*y)",
+       [](double x, double y) -> Parts {
          const double t = std::tanh(x * y), s = 1 - t * t;
          return {t, y * s, x * s, -2 * t * s * y * y, s - 2 * t * s * x * y, -2 * t * s * x * x};
        }},
-      {"asin(x*y)", [](double x, double y) -> Parts {
+      {"asin(x*y)",
+       [](double x, double y) -> Parts {
          const double u = x * y, g1 = 1 / std::sqrt(1 - u * u), g2 = u * g1 * g1 * g1;
          return {std::asin(u), y * g1, x * g1, y * y * g2, g1 + x * y * g2, x * x * g2};
-       }, unit_disc},
-      {"acos(x) + atan(y)", [](double x, double y) -> Parts {
+       },
+       unit_disc},
+      {"acos(x) + atan(y)",
+       [](double x, double y) -> Parts {
          const double q = 1 - x * x, d = 1 + y * y;
          return {std::acos(x) + std::atan(y), -1 / std::sqrt(q), 1 / d, -x / (q * std::sqrt(q)), 0, -2 * y / (d * d)};
-       }, unit_disc},
-      {"tan(x) - y", [](double x, double y) -> Parts {
+       },
+       unit_disc},
+      {"tan(x) - y",
+       [](double x, double y) -> Parts {
          const double t = std::tan(x), s = 1 + t * t;
          return {t - y, s, -1, 2 * t * s, 0, 0};
        }},
-      {"log(x^2 + y^2)", [](double x, double y) -> Parts {
+      {"log(x^2 + y^2)",
+       [](double x, double y) -> Parts {
          const double r2 = x * x + y * y, r4 = r2 * r2;
-         return {std::log(r2), 2 * x / r2, 2 * y / r2,
-                 2 * (y * y - x * x) / r4, -4 * x * y / r4, 2 * (x * x - y * y) / r4};
+         return {
+             std::log(r2), 2 * x / r2, 2 * y / r2, 2 * (y * y - x * x) / r4, -4 * x * y / r4, 2 * (x * x - y * y) / r4};
        }},
-      {"a*x^2 + b*y", [](double x, double y) -> Parts { return {0.5 * x * x - 2 * y, x, -2, 1, 0, 0}; },
-       {{0.3, 0.7}, {0.0, 0.0}}, {{"a", 0.5}, {"b", -2.0}}},
-      {"x**3 * y", [](double x, double y) -> Parts {
-         return {x * x * x * y, 3 * x * x * y, x * x * x, 6 * x * y, 3 * x * x, 0};
-       }},
+      {"a*x^2 + b*y",
+       [](double x, double y) -> Parts { return {0.5 * x * x - 2 * y, x, -2, 1, 0, 0}; },
+       {{0.3, 0.7}, {0.0, 0.0}},
+       {{"a", 0.5}, {"b", -2.0}}},
+      {"x**3 * y",
+       [](double x, double y) -> Parts { return {x * x * x * y, 3 * x * x * y, x * x * x, 6 * x * y, 3 * x * x, 0}; }},
       // unary minus binds looser than power; integer powers are exact at 0
-      {"-x^2 + y^2", [](double x, double y) -> Parts { return {-x * x + y * y, -2 * x, 2 * y, -2, 0, 2}; },
+      {"-x^2 + y^2",
+       [](double x, double y) -> Parts { return {-x * x + y * y, -2 * x, 2 * y, -2, 0, 2}; },
        {{0.0, 0.0}, {0.3, -0.7}}},
-      {"x/y", [](double x, double y) -> Parts {
-         return {x / y, 1 / y, -x / (y * y), 0, -1 / (y * y), 2 * x / (y * y * y)};
-       }},
-      {"sin(x)*cos(y)", [](double x, double y) -> Parts {
+      {"x/y",
+       [](double x, double y) -> Parts { return {x / y, 1 / y, -x / (y * y), 0, -1 / (y * y), 2 * x / (y * y * y)}; }},
+      {"sin(x)*cos(y)",
+       [](double x, double y) -> Parts {
          const double sx = std::sin(x), cx = std::cos(x), sy = std::sin(y), cy = std::cos(y);
          return {sx * cy, cx * cy, -sx * sy, -sx * cy, -cx * sy, -sx * cy};
        }},
-      {"x^1.5 + y^-2", [](double x, double y) -> Parts {
-         return {std::pow(x, 1.5) + 1 / (y * y), 1.5 * std::sqrt(x), -2 / (y * y * y), 0.75 / std::sqrt(x), 0,
+      {"x^1.5 + y^-2",
+       [](double x, double y) -> Parts {
+         return {std::pow(x, 1.5) + 1 / (y * y),
+                 1.5 * std::sqrt(x),
+                 -2 / (y * y * y),
+                 0.75 / std::sqrt(x),
+                 0,
                  6 / (y * y * y * y)};
-       }, positive},
-      {"sqrt(x*y)", [](double x, double y) -> Parts {
+       },
+       positive},
+      {"sqrt(x*y)",
+       [](double x, double y) -> Parts {
          const double s = std::sqrt(x * y), s3 = s * s * s;
          return {s, y / (2 * s), x / (2 * s), -y * y / (4 * s3), 1 / (4 * s), -x * x / (4 * s3)};
-       }, positive},
-      {"exp(x)*log(y)", [](double x, double y) -> Parts {
+       },
+       positive},
+      {"exp(x)*log(y)",
+       [](double x, double y) -> Parts {
          const double e = std::exp(x), l = std::log(y);
          return {e * l, e * l, e / y, e * l, e / y, -e / (y * y)};
-       }, positive},
-      {"1/(1 + x^2 + y^2)", [](double x, double y) -> Parts {
+       },
+       positive},
+      {"1/(1 + x^2 + y^2)",
+       [](double x, double y) -> Parts {
          const double q = 1 / (1 + x * x + y * y), q2 = q * q, q3 = q2 * q;
          return {q, -2 * x * q2, -2 * y * q2, -2 * q2 + 8 * x * x * q3, 8 * x * y * q3, -2 * q2 + 8 * y * y * q3};
        }},
-      {"sin(y)/(x + 2)", [](double x, double y) -> Parts {
+      {"sin(y)/(x + 2)",
+       [](double x, double y) -> Parts {
          const double s = std::sin(y), c = std::cos(y), d = x + 2;
          return {s / d, -s / (d * d), c / d, 2 * s / (d * d * d), -c / (d * d), -s / d};
        }},
       {"2^3^2 * x", [](double x, double) -> Parts { return {512 * x, 512, 0, 0, 0, 0}; }},
-      {"hypot(3, x) + atan2(1, y)", [](double x, double y) -> Parts {
+      {"hypot(3, x) + atan2(1, y)",
+       [](double x, double y) -> Parts {
          const double h = std::hypot(3.0, x), d = 1 + y * y;
          return {h + std::atan2(1.0, y), x / h, -1 / d, 9 / (h * h * h), 0, 2 * y / (d * d)};
        }},
-      {"cosh(x - y) + e^x", [](double x, double y) -> Parts {
+      {"cosh(x - y) + e^x",
+       [](double x, double y) -> Parts {
          const double s = std::sinh(x - y), c = std::cosh(x - y), e = std::exp(x);
          return {c + e, s + e, -s, c + e, -c, c};
        }},
-      {"2/x - (3 - y)", [](double x, double y) -> Parts {
-         return {2 / x - 3 + y, -2 / (x * x), 1, 4 / (x * x * x), 0, 0};
-       }},
+      {"2/x - (3 - y)",
+       [](double x, double y) -> Parts { return {2 / x - 3 + y, -2 / (x * x), 1, 4 / (x * x * x), 0, 0}; }},
   };
 }
 
@@ -219,7 +250,8 @@ TEST(Formula, ErrorsSayWhatAndWhere) {
       {"Sin(x)", "unknown function 'Sin'; names are case-sensitive: did you mean 'sin'?", 1},
       {"2 * foo(x)",
        "unknown function 'foo'; the functions are "
-       "sin cos tan asin acos atan sinh cosh tanh exp log sqrt atan2 hypot", 5},
+       "sin cos tan asin acos atan sinh cosh tanh exp log sqrt atan2 hypot",
+       5},
       {"atan2(x)", "atan2 takes 2 arguments, got 1", 1},
       {"1 + sin(x, y)", "sin takes 1 argument, got 2", 5},
       {"hypot()", "hypot takes 2 arguments, got 0", 1},
@@ -250,7 +282,9 @@ TEST(Formula, ErrorsSayWhatAndWhere) {
       {"(x y)", "expected an operator or ')' before 'y'", 4},
       {"x", "param 'x'" + shadows, 0, {{"x", 1}}},
       {"x", "param 'sqrt'" + shadows, 0, {{"sqrt", 1}}},
-      {"x", "param name 'a b' is not a name: use letters, digits and '_', starting with a letter or '_'", 0,
+      {"x",
+       "param name 'a b' is not a name: use letters, digits and '_', starting with a letter or '_'",
+       0,
        {{"a b", 1}}},
       {"x", "param 'a' is not finite", 0, {{"a", std::numeric_limits<double>::quiet_NaN()}}},
   };
@@ -329,8 +363,9 @@ TEST(Formula, DeepButLegalFormulasEvaluate) {
 }
 
 TEST(Formula, TokenSoupParsesOrFailsWithAColumnInsideTheText) {
-  const std::vector<std::string> pieces = {"x", "y", "2", ".5", "1e-3", "pi", "e", "a", "+", "-", "*", "/", "^", "**",
-                                           "(", ")", ",", "sin(", "atan2(", "hypot(", "abs(", "foo", " ", "#", "1e", "q("};
+  const std::vector<std::string> pieces = {"x",      "y",      "2",    ".5",  "1e-3", "pi", "e",  "a", "+",
+                                           "-",      "*",      "/",    "^",   "**",   "(",  ")",  ",", "sin(",
+                                           "atan2(", "hypot(", "abs(", "foo", " ",    "#",  "1e", "q("};
   std::uint64_t state = 12345;
   int parsed = 0;
   for (int trial = 0; trial < 20000; ++trial) {
@@ -359,10 +394,15 @@ TEST(Formula, TokenSoupParsesOrFailsWithAColumnInsideTheText) {
 using AD2 = Eigen::AutoDiffScalar<Eigen::Matrix<double, 2, 1>>;
 
 TEST(Formula, AutoDiffScalarGivesThirdOrderConsistentJets) {
-  const std::vector<std::string> texts = {
-      "exp(-(x^2+y^2))",         "atan2(y, x) + hypot(x, y)", "x^y + 2^-x",
-      "atan(x*y) + 3/(x + y) + y/(x*x + 1)", "tan(x) - sqrt(x*y)", "asin(x/2)*acos(y/2)",
-      "cos(x*pi + pi)/10 - y/10", "log(x)*tanh(y) + x^1.5",    "sinh(x)*cosh(y) - x^-3"};
+  const std::vector<std::string> texts = {"exp(-(x^2+y^2))",
+                                          "atan2(y, x) + hypot(x, y)",
+                                          "x^y + 2^-x",
+                                          "atan(x*y) + 3/(x + y) + y/(x*x + 1)",
+                                          "tan(x) - sqrt(x*y)",
+                                          "asin(x/2)*acos(y/2)",
+                                          "cos(x*pi + pi)/10 - y/10",
+                                          "log(x)*tanh(y) + x^1.5",
+                                          "sinh(x)*cosh(y) - x^-3"};
   const double x0 = 0.6, y0 = 0.9;
   for (const std::string& text : texts) {
     const Formula f = Formula::parse(text);

@@ -3,6 +3,8 @@
 // rebuilds corrupted, truncated and stale entries instead of loading them,
 // and without a compiler the tape runs.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -13,9 +15,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "problems/formula.hpp"
 #include "problems/formula_codegen.hpp"
@@ -75,7 +74,8 @@ bool same_bits(double a, double b) { return (std::isnan(a) && std::isnan(b)) || 
 
 void expect_same_jets(const Jet2<double>& a, const Jet2<double>& b, const std::string& where) {
   const double pa[6] = {a.f, a.fx, a.fy, a.fxx, a.fxy, a.fyy}, pb[6] = {b.f, b.fx, b.fy, b.fxx, b.fxy, b.fyy};
-  for (int i = 0; i < 6; ++i) EXPECT_TRUE(same_bits(pa[i], pb[i])) << where << " part " << i << ": " << pa[i] << " vs " << pb[i];
+  for (int i = 0; i < 6; ++i)
+    EXPECT_TRUE(same_bits(pa[i], pb[i])) << where << " part " << i << ": " << pa[i] << " vs " << pb[i];
 }
 
 // native against tape, eval and slopes, at points inside and far outside
@@ -91,7 +91,8 @@ int expect_native_equals_tape(const std::string& text, const std::map<std::strin
     return 0;
   }
   constexpr double inf = std::numeric_limits<double>::infinity();
-  const double points[][2] = {{0.0, 0.0}, {0.3, -0.7}, {-3.1, 2.4}, {1e-300, -1e300}, {inf, 0.5}, {-0.25, std::nan("")}};
+  const double points[][2] = {{0.0, 0.0},       {0.3, -0.7}, {-3.1, 2.4},
+                              {1e-300, -1e300}, {inf, 0.5},  {-0.25, std::nan("")}};
   int compared = 0;
   for (const auto& p : points) {
     const std::string where = text + " at (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ")";
@@ -105,11 +106,11 @@ int expect_native_equals_tape(const std::string& text, const std::map<std::strin
 TEST(FormulaNative, AgreesWithTheTapeBitForBitOnTheTestFormulas) {
   SKIP_IF_SWITCHED_OFF();
   const std::map<std::string, double> params = {{"a", 0.5}, {"b", -2.0}};
-  for (const char* text : {"0.05*sin(2*x)*cos(3*y) + 0.1*x^2", "0.5*y^2 + 0.05*x^2", "x", "3",
-                           "a*exp(-(x^2 + y^2)) + b*log(1 + x^2)", "sqrt(1 + x^2 + y^2) - hypot(x, 2)",
-                           "atan2(y, x + 3) + tan(x/4) + asin(y/9) + acos(x/9) + atan(x*y)",
-                           "sinh(x/3)*cosh(y/3) + tanh(x - y) + x^-2 + 2^x + x^1.5 + (x^2+1)^y",
-                           "-(x - y)/(1 + x^2) - 2/(3 + y^2)", "cos(x)*sin(x) + sin(y)^2"})
+  for (const char* text :
+       {"0.05*sin(2*x)*cos(3*y) + 0.1*x^2", "0.5*y^2 + 0.05*x^2", "x", "3", "a*exp(-(x^2 + y^2)) + b*log(1 + x^2)",
+        "sqrt(1 + x^2 + y^2) - hypot(x, 2)", "atan2(y, x + 3) + tan(x/4) + asin(y/9) + acos(x/9) + atan(x*y)",
+        "sinh(x/3)*cosh(y/3) + tanh(x - y) + x^-2 + 2^x + x^1.5 + (x^2+1)^y", "-(x - y)/(1 + x^2) - 2/(3 + y^2)",
+        "cos(x)*sin(x) + sin(y)^2"})
     EXPECT_EQ(expect_native_equals_tape(text, params), 12) << text;
 }
 
@@ -183,7 +184,8 @@ void expect_rebuilt_after(const std::string& name, const std::function<void(cons
 
 TEST(FormulaNative, LoadsAnUndamagedCopyOfAnEntry) {
   SKIP_IF_SWITCHED_OFF();
-  expect_rebuilt_after("undamaged", [](const fs::path&) {}, NativeOutcome::cached);
+  expect_rebuilt_after(
+      "undamaged", [](const fs::path&) {}, NativeOutcome::cached);
 }
 
 TEST(FormulaNative, RebuildsACorruptedEntry) {
@@ -238,14 +240,13 @@ TEST(FormulaNative, AFormulaTooBigForTheTapeSaysTheStackInterpreterRuns) {
   std::ofstream(scene) << R"({"name": "deep", "description": "a plane written too deep for the tape", "landscape": ")"
                        << text << R"(", "domain": [-1, 1, -1, 1], "ball": {"radius": 0.1, "mass": 1.0},)"
                        << R"( "start": {"contact": [0, 0], "omega": [0, 0, 0]}, "t_end": 1})";
-  const testing::CliOutcome o = testing::run_rollbench("trajectory " + scene.string() +
-                                                       " --integrator rk4 --h 0.01 --t-end 0.1 --dt-out 0.1 --out " +
-                                                       csv.string());
+  const testing::CliOutcome o = testing::run_rollbench(
+      "trajectory " + scene.string() + " --integrator rk4 --h 0.01 --t-end 0.1 --dt-out 0.1 --out " + csv.string());
   EXPECT_EQ(o.code, 0) << o.err;
-  EXPECT_EQ(o.err, "rollbench: a landscape formula runs on the stack interpreter, neither on the tape nor as native "
-                   "code (it is too long or too deep for the tape: " +
-                       std::to_string(f.size()) + " instructions, stack depth " + std::to_string(f.stack_depth()) +
-                       ")\n");
+  EXPECT_EQ(o.err,
+            "rollbench: a landscape formula runs on the stack interpreter, neither on the tape nor as native "
+            "code (it is too long or too deep for the tape: " +
+                std::to_string(f.size()) + " instructions, stack depth " + std::to_string(f.stack_depth()) + ")\n");
   fs::remove(scene);
   fs::remove(csv);
 }

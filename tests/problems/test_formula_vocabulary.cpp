@@ -68,7 +68,8 @@ TEST(FormulaVocabulary, ASceneParamThatShadowsAnyNameIsRefusedUnderItsKey) {
 }
 
 TEST(FormulaVocabulary, ParamNamesThatAreNotNamesAreRefusedTheSameWayEverywhere) {
-  const std::string message = "param name 'a b' is not a name: use letters, digits and '_', starting with a letter or '_'";
+  const std::string message =
+      "param name 'a b' is not a name: use letters, digits and '_', starting with a letter or '_'";
   try {
     check_formula_param_name("a b");
     ADD_FAILURE() << "accepted";

@@ -98,13 +98,13 @@ TEST(Jacobian, RotationBlockIsHatOmegaAndRNeverEntersZ) {
   FlatJacobian J;
   flat_jacobian(problem, y, J);
   const RollingBall& m = problem.model();
-  const Vec3 omega = m.omega_from_momentum(rotation_of(y), m.normal_at(y[kOffsetAlpha], y[kOffsetAlpha + 1]), Vec3(momentum_of(y)));
+  const Vec3 omega =
+      m.omega_from_momentum(rotation_of(y), m.normal_at(y[kOffsetAlpha], y[kOffsetAlpha + 1]), Vec3(momentum_of(y)));
   const Mat3 W = hat(omega);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < 3; ++l)
-          EXPECT_NEAR(J(3 * i + j, 3 * k + l), j == l ? W(i, k) : 0.0, 1e-14);
+        for (int l = 0; l < 3; ++l) EXPECT_NEAR(J(3 * i + j, 3 * k + l), j == l ? W(i, k) : 0.0, 1e-14);
   const double z_on_R = J.block<kZSize, 9>(kOffsetV, kOffsetR).cwiseAbs().maxCoeff();
   EXPECT_EQ(z_on_R, 0.0);
 }

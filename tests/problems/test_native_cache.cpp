@@ -4,9 +4,8 @@
 // links planted at the old predictable temporary names are not followed; and
 // without HOME the cache is a private mkdtemp folder, not a shared name.
 // Each of these was possible before (d44d9b5): the test fails there.
-#include <gtest/gtest.h>
-
 #include <dlfcn.h>
+#include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -110,8 +109,10 @@ testing::CliOutcome run_with_env(const std::string& env, const std::string& args
 }
 
 std::string trajectory_args() {
-  return std::string("trajectory ") + RB_TEST_DATA + "/stop-domain.json --integrator rk4 --h 0.01 --t-end 0.1 "
-         "--dt-out 0.1 --out " + testing::cli_temp_file("nc.csv").string();
+  return std::string("trajectory ") + RB_TEST_DATA +
+         "/stop-domain.json --integrator rk4 --h 0.01 --t-end 0.1 "
+         "--dt-out 0.1 --out " +
+         testing::cli_temp_file("nc.csv").string();
 }
 
 TEST(NativeCache, HmacSha256GivesRfc4231sTestVectors) {
@@ -134,7 +135,9 @@ TEST(NativeCache, HmacSha256GivesRfc4231sTestVectors) {
 }
 
 TEST(NativeCache, ASealedEntryOpensOnlyWithItsKeyAndSecret) {
-  const std::string secret(32, 's'), object = "\x7f" "ELF and the rest";
+  const std::string secret(32, 's'), object =
+                                         "\x7f"
+                                         "ELF and the rest";
   const std::string entry = seal_entry(object, "the key", secret);
   ASSERT_TRUE(open_sealed_entry(entry, "the key", secret));
   EXPECT_EQ(*open_sealed_entry(entry, "the key", secret), object);
@@ -159,19 +162,23 @@ TEST(NativeCache, AForgedEntryIsRebuiltNeverLoaded) {
   ASSERT_NE(key.find("rollbench native formula"), std::string::npos);
 
   fs::create_directories(work.path());
-  const fs::path marker = work.path() / "constructor-ran", c_file = work.path() / "evil.c", so = work.path() / "evil.so";
-  write_all_to(c_file, formula_c_source(f.tape()) + "\n#include <fcntl.h>\n#include <unistd.h>\n"
-                       "__attribute__((constructor)) static void rb_forged(void) {\n  int fd = open(\"" +
-                       marker.string() + "\", O_CREAT | O_WRONLY, 0600);\n  if (fd >= 0) close(fd);\n}\n");
-  ASSERT_EQ(std::system(("cc -O2 -fPIC -shared -ffp-contract=off -o " + so.string() + " " + c_file.string() + " -lm").c_str()), 0);
+  const fs::path marker = work.path() / "constructor-ran", c_file = work.path() / "evil.c",
+                 so = work.path() / "evil.so";
+  write_all_to(c_file, formula_c_source(f.tape()) +
+                           "\n#include <fcntl.h>\n#include <unistd.h>\n"
+                           "__attribute__((constructor)) static void rb_forged(void) {\n  int fd = open(\"" +
+                           marker.string() + "\", O_CREAT | O_WRONLY, 0600);\n  if (fd >= 0) close(fd);\n}\n");
+  ASSERT_EQ(std::system(
+                ("cc -O2 -fPIC -shared -ffp-contract=off -o " + so.string() + " " + c_file.string() + " -lm").c_str()),
+            0);
   const std::string evil = read_all(so);
   const std::string real_trailer = read_all(real_entry).substr(read_all(real_entry).size() - 48 - key.size());
   const struct {
     const char* name;
     std::string bytes;
   } forgeries[] = {
-      {"old-trailer", evil + old_style_trailer(evil, key)},         // d44d9b5 loaded this one
-      {"copied-mac", evil + real_trailer},                          // a genuine entry's MAC on other bytes
+      {"old-trailer", evil + old_style_trailer(evil, key)},              // d44d9b5 loaded this one
+      {"copied-mac", evil + real_trailer},                               // a genuine entry's MAC on other bytes
       {"guessed-secret", seal_entry(evil, key, std::string(32, '\0'))},  // sealed under a guessed secret
   };
   for (const auto& forgery : forgeries) {
@@ -241,7 +248,8 @@ TEST(NativeCache, ASymlinkedFolderIsRefused) {
 
 // a copy of a good cache (its secret and entry) in a fresh folder, spoiled,
 // then refused with why(folder, entry)
-void expect_copy_refused(const std::string& name, const std::function<void(const fs::path& folder, const fs::path& entry)>& spoil,
+void expect_copy_refused(const std::string& name,
+                         const std::function<void(const fs::path& folder, const fs::path& entry)>& spoil,
                          const std::function<std::string(const fs::path& folder, const fs::path& entry)>& why) {
   const Folder genuine(name + "_genuine"), cache(name);
   Formula f = Formula::parse(kText);
@@ -395,8 +403,8 @@ TEST(NativeCache, WithoutHomeARunLeavesNoSharedFolderBehind) {
   const Folder temp("nohome");
   ASSERT_EQ(mkdir(temp.path().c_str(), 0700), 0);
   const char* path = std::getenv("PATH");
-  const testing::CliOutcome o =
-      run_with_env("-i PATH=" + std::string(path ? path : "/usr/bin:/bin") + " TMPDIR=" + temp.str(), trajectory_args());
+  const testing::CliOutcome o = run_with_env(
+      "-i PATH=" + std::string(path ? path : "/usr/bin:/bin") + " TMPDIR=" + temp.str(), trajectory_args());
   EXPECT_EQ(o.code, 0) << o.err;
   EXPECT_EQ(o.err, "") << "native code ran, from the private folder";
   // d44d9b5 left <TMPDIR>/rollbench-cache-<uid> for anyone to plant into

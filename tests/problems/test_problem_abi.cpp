@@ -64,8 +64,8 @@ struct ProblemLibrary {
     f = reinterpret_cast<F>(dlsym(handle, symbol));
   }
   bool complete() const {
-    return handle && abi_version && open && close && name && state_size && component_name && initial_state &&
-           t_end && rhs && jacobian && check && message && rhs_evals && jacobian_evals && reset_counters;
+    return handle && abi_version && open && close && name && state_size && component_name && initial_state && t_end &&
+           rhs && jacobian && check && message && rhs_evals && jacobian_evals && reset_counters;
   }
 };
 

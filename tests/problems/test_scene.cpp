@@ -47,8 +47,9 @@ void expect_key(const json& scene, const std::string& key, int column = 0) {
 
 TEST(SceneShipped, EveryShippedSceneLoadsAndStartsValid) {
   const std::vector<std::string> expected = {
-      "bowl-3d",        "bowl-planar",  "bumpy-long", "chaplygin-bowl", "chaplygin-bumpy-long", "chaplygin-plane", "chaplygin-valley",
-      "gaussian-hills", "incline-spin", "plane",      "saddle",               "valley-rest",     "valley-sideways"};
+      "bowl-3d",         "bowl-planar",      "bumpy-long",     "chaplygin-bowl", "chaplygin-bumpy-long",
+      "chaplygin-plane", "chaplygin-valley", "gaussian-hills", "incline-spin",   "plane",
+      "saddle",          "valley-rest",      "valley-sideways"};
   const std::vector<std::string> names = shipped_scene_names();
   EXPECT_EQ(names, expected);
   for (const std::string& name : names) {
@@ -208,9 +209,9 @@ TEST(SceneErrors, WrongArrayLengths) {
 
 TEST(SceneErrors, OutOfRangeValues) {
   const std::vector<std::pair<json::json_pointer, json>> cases = {
-      {json::json_pointer("/ball/radius"), 0.0},  {json::json_pointer("/ball/radius"), -0.1},
-      {json::json_pointer("/ball/mass"), 0.0},    {json::json_pointer("/gravity"), -9.81},
-      {json::json_pointer("/t_end"), 0.0},        {json::json_pointer("/t_end"), -1.0},
+      {json::json_pointer("/ball/radius"), 0.0}, {json::json_pointer("/ball/radius"), -0.1},
+      {json::json_pointer("/ball/mass"), 0.0},   {json::json_pointer("/gravity"), -9.81},
+      {json::json_pointer("/t_end"), 0.0},       {json::json_pointer("/t_end"), -1.0},
   };
   for (const auto& [pointer, value] : cases) {
     json s = base_scene();
@@ -406,7 +407,9 @@ TEST(SceneStart, OmegaIsTakenAsGivenAndTheQuaternionBecomesR0) {
   const Scene scene = parse_scene(s.dump());
   const Problem problem = make_problem(scene);
   const Vec3 N = problem.model().normal_at(0.0, 0.0);
-  EXPECT_LT((problem.model().omega_from_momentum(rotation_of(problem.y0()), N, Vec3(momentum_of(problem.y0()))) - Vec3(1, -2, 3)).norm(),
+  EXPECT_LT((problem.model().omega_from_momentum(rotation_of(problem.y0()), N, Vec3(momentum_of(problem.y0()))) -
+             Vec3(1, -2, 3))
+                .norm(),
             1e-13);
   const Mat3 R0 = rotation_of(problem.y0());
   EXPECT_LT((R0 - so3_exp(Vec3(1, 2, 2) / 3.0)).norm(), 1e-15);

@@ -51,9 +51,8 @@ void expect_curvature_stop(const Problem& p, const RunOptions& o, const RunResul
 // reaches the limit (an error, not a crossing).
 TEST(ValidityEveryStage, FixedStepMethodsStopAtTheCrossing) {
   const Problem p = steep_bowl();
-  for (const char* name : {"rk4", "rk3", "rkmk4", "rkmk4-cayley", "cf4", "cg4a", "rk4-projected",
-                           "rk4-quaternion", "odeint-rk4", "odeint-dopri5", "odeint-abm4", "gsl-rk4", "gsl-rkf45",
-                           "gsl-rk4imp"}) {
+  for (const char* name : {"rk4", "rk3", "rkmk4", "rkmk4-cayley", "cf4", "cg4a", "rk4-projected", "rk4-quaternion",
+                           "odeint-rk4", "odeint-dopri5", "odeint-abm4", "gsl-rk4", "gsl-rkf45", "gsl-rk4imp"}) {
     for (const double h : {0.01, 0.02, 0.05}) {
       RunOptions o = outputs_every(std::max(0.01, h));
       o.h = h;
@@ -96,9 +95,9 @@ TEST(ValidityEveryStage, EvaluationsCountedPerStepAreTheMethodsOwn) {
     const char* name;
     long per_step;  // evaluations a step, after a start of its own
   };
-  for (const Want w : {Want{"rk4", 4}, Want{"rkmk4", 4}, Want{"rk4-projected", 4}, Want{"rk4-quaternion", 4},
-                       Want{"odeint-rk4", 4}, Want{"odeint-cash-karp54", 6}, Want{"odeint-dopri5", 6},
-                       Want{"gsl-rk4", 11}, Want{"cf4", 4}}) {
+  for (const Want w :
+       {Want{"rk4", 4}, Want{"rkmk4", 4}, Want{"rk4-projected", 4}, Want{"rk4-quaternion", 4}, Want{"odeint-rk4", 4},
+        Want{"odeint-cash-karp54", 6}, Want{"odeint-dopri5", 6}, Want{"gsl-rk4", 11}, Want{"cf4", 4}}) {
     const RunResult r = find_integrator(w.name).integrate(p, o);
     ASSERT_EQ(r.status, Status::ok) << w.name;
     ASSERT_EQ(r.cost.steps, 100) << w.name;
@@ -112,8 +111,8 @@ TEST(ValidityEveryStage, EvaluationsCountedPerStepAreTheMethodsOwn) {
   RunOptions a = outputs_every(0.1);
   a.h = 1e-3;
   a.rtol = a.atol = 1e-8;
-  for (const char* name : {"odeint-cash-karp54-adaptive", "gsl-rkf45-adaptive", "gsl-rk4imp-adaptive",
-                           "cg3-adaptive"}) {
+  for (const char* name :
+       {"odeint-cash-karp54-adaptive", "gsl-rkf45-adaptive", "gsl-rk4imp-adaptive", "cg3-adaptive"}) {
     const RunResult r = find_integrator(name).integrate(p, a);
     ASSERT_EQ(r.status, Status::ok) << name;
     EXPECT_EQ(r.cost.validity_checks, r.cost.rhs_evals + 2) << name;

@@ -35,8 +35,7 @@ RunOptions end_only(const Integrator& method, double t_end, double h) {
 // row, and the last valid state is within the model.
 void expect_stop_between_outputs(const Problem& p, Status want) {
   for (const char* name : {"euler", "rk4", "rkmk4", "rk4-projected", "rk4-quaternion", "odeint-rk4", "gsl-rk4",
-                           "odeint-dopri5-adaptive", "gsl-rkf45-adaptive", "rkmk-dp54-adaptive",
-                           "gsl-rk4imp"}) {
+                           "odeint-dopri5-adaptive", "gsl-rkf45-adaptive", "rkmk-dp54-adaptive", "gsl-rk4imp"}) {
     const Integrator& m = find_integrator(name);
     const RunResult r = m.integrate(p, end_only(m, p.t_end(), 1e-3));
     EXPECT_EQ(status_name(r.status), status_name(want)) << name << ": " << r.message;

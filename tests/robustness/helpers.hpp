@@ -3,6 +3,8 @@
 // a user runs it, and one method per family and driver from the registry
 // (never a list of names, so a new family is covered the day it registers).
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -10,8 +12,6 @@
 #include <map>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <vector>
 
 #include "bench/lib/trajectory_csv.hpp"

@@ -61,9 +61,9 @@ TEST(Catalogue, EveryCitedTestExistsInItsFile) {
 }
 
 TEST(Catalogue, EveryRunStatusIsCatalogued) {
-  for (const Status s : {Status::ok, Status::diverged, Status::lift_off, Status::curvature, Status::domain,
-                         Status::step_underflow, Status::max_steps, Status::crashed, Status::timeout,
-                         Status::off_group, Status::error}) {
+  for (const Status s :
+       {Status::ok, Status::diverged, Status::lift_off, Status::curvature, Status::domain, Status::step_underflow,
+        Status::max_steps, Status::crashed, Status::timeout, Status::off_group, Status::error}) {
     const std::string entry = "| `" + std::string(status_name(s)) + "` |";
     EXPECT_NE(catalogue().find(entry), std::string::npos) << "no catalogue row for the status " << status_name(s);
   }
@@ -78,8 +78,7 @@ TEST(Catalogue, EveryRobustnessTestIsCited) {
     const std::string source = read_text(entry.path());
     for (auto it = std::sregex_iterator(source.begin(), source.end(), test); it != std::sregex_iterator(); ++it)
       EXPECT_TRUE(cited.count(std::string((*it)[2]) + "." + std::string((*it)[3])))
-          << entry.path().filename().string() << ": " << (*it)[2] << "." << (*it)[3]
-          << " is not in docs/bad-input.md";
+          << entry.path().filename().string() << ": " << (*it)[2] << "." << (*it)[3] << " is not in docs/bad-input.md";
   }
 }
 

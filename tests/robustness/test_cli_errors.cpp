@@ -52,14 +52,17 @@ TEST(CliErrors, TrajectoryOptionsNameTheirOption) {
 
 TEST(CliErrors, RunAndMergeOptionsNameTheirOption) {
   const std::vector<CliCase> cases = {
-      {"run --preset huge --out OUT", 2, "rollbench: 'preset': unknown preset 'huge' (quick, default, full or regime)\n"},
+      {"run --preset huge --out OUT", 2,
+       "rollbench: 'preset': unknown preset 'huge' (quick, default, full or regime)\n"},
       {"run --h 0,1 --out OUT", 2, "rollbench: 'h': expected positive numbers separated by commas, got '0'\n"},
-      {"run --tol 1e-6,abc --out OUT", 2, "rollbench: 'tol': expected positive numbers separated by commas, got 'abc'\n"},
+      {"run --tol 1e-6,abc --out OUT", 2,
+       "rollbench: 'tol': expected positive numbers separated by commas, got 'abc'\n"},
       {"run --h 2^-3..2^-1 --out OUT", 2, "rollbench: 'h': expected a range like 2^-3..2^-8, got '2^-3..2^-1'\n"},
       {"run --integrators rk4,nope --scenes plane --out OUT", 2,
        "rollbench: 'integrator': unknown integrator 'nope' (`rollbench list` shows them all)\n"},
       {"run --preset quick --shard 3/2 --out OUT", 2, "rollbench: 'shard': expected i/n with 0 <= i < n, got '3/2'\n"},
-      {"merge /no/such/report.json --out OUT", 2, "rollbench: 'report': cannot read the report '/no/such/report.json'\n"},
+      {"merge /no/such/report.json --out OUT", 2,
+       "rollbench: 'report': cannot read the report '/no/such/report.json'\n"},
       {"merge " RB_SCENE_DIR "/plane.json --out OUT", 2, "is not a rollbench.report/2 report\n"},
   };
   for (const CliCase& c : cases) expect_cli(c);
@@ -76,7 +79,8 @@ TEST(CliErrors, RunsThatStopEarlyExitThreeWithTheReason) {
       // steps that jump the region where r kappa > 1: a stage sees it
       {"trajectory " RB_TEST_DATA "/stop-steep-bowl.json --integrator rk4 --h 0.05 --out OUT", 3,
        ": curvature: r * max curvature reached "},
-      {"trajectory " RB_TEST_DATA "/stop-steep-bowl.json --integrator rkmk-f78-adaptive --rtol 1e-2 --atol 1e-2 --out OUT",
+      {"trajectory " RB_TEST_DATA
+       "/stop-steep-bowl.json --integrator rkmk-f78-adaptive --rtol 1e-2 --atol 1e-2 --out OUT",
        3, ": curvature: "},
       {"trajectory " RB_TEST_DATA "/stop-nonfinite.json --integrator euler --h 0.01 --out OUT", 3,
        ": diverged: the landscape or its derivatives are not finite at the contact point\n"},

@@ -127,8 +127,8 @@ TEST(FamilyFailures, AdaptiveMethodsShrinkANonFiniteTrialStep) {
     for (const double tol : {1e-6, 1e-8}) {
       const RunResult r = m->integrate(p, options_for(*m, p.t_end(), 0.0, tol, kDt));
       EXPECT_NE(r.status, Status::ok) << m->name();
-      EXPECT_GT(r.stop_time, 1.2) << m->name() << " tol " << tol << " gave up early: " << status_name(r.status)
-                                  << ": " << r.message;
+      EXPECT_GT(r.stop_time, 1.2) << m->name() << " tol " << tol << " gave up early: " << status_name(r.status) << ": "
+                                  << r.message;
     }
   }
 }
@@ -185,8 +185,8 @@ TEST(FailingSweep, EveryRunIsRecordedAndNoneCrashes) {
   SweepSpec spec;
   for (const StopCase& c : kStopScenes) spec.scenes.push_back(std::string(RB_TEST_DATA) + "/" + c.file);
   spec.integrators = representatives();
-  spec.hs = {1e-2, -1.0};      // -1: an option the methods refuse
-  spec.tols = {1e-6, 1e-18};   // 1e-18: below rounding
+  spec.hs = {1e-2, -1.0};     // -1: an option the methods refuse
+  spec.tols = {1e-6, 1e-18};  // 1e-18: below rounding
   spec.repeats = 1;
   spec.jobs = 2;
   const std::vector<SweepScene> scenes = prepare_scenes(spec);
@@ -204,10 +204,11 @@ TEST(FailingSweep, EveryRunIsRecordedAndNoneCrashes) {
     EXPECT_FALSE(r.message.empty());
     EXPECT_EQ(r.wall_samples.size(), 1u);
     const Status want = r.h < 0 ? Status::error
-                        : r.rtol == 1e-18 ? Status::step_underflow
-                        : std::find_if(std::begin(kStopScenes), std::end(kStopScenes), [&](const StopCase& c) {
-                            return r.scene + ".json" == c.file;
-                          })->status;
+                        : r.rtol == 1e-18
+                            ? Status::step_underflow
+                            : std::find_if(std::begin(kStopScenes), std::end(kStopScenes), [&](const StopCase& c) {
+                                return r.scene + ".json" == c.file;
+                              })->status;
     EXPECT_EQ(status_name(r.status), status_name(want)) << r.message;
     if (want != Status::error && want != Status::step_underflow) {
       EXPECT_GT(r.stop_time, 0.0);

@@ -87,8 +87,8 @@ TEST(Limits, NonFiniteNumbersInEveryNumericKeyNameTheKey) {
       {"[1, 0, 0, 0]", "[1e400, 0, 0, 0]"},
       {R"("t_end": 1.0)", R"("t_end": 1e400)"},
   };
-  const std::vector<std::string> keys = {"params.a",  "domain",        "ball.radius", "ball.mass",
-                                         "gravity",   "start.contact", "start.velocity", "start.spin",
+  const std::vector<std::string> keys = {"params.a",          "domain",        "ball.radius",    "ball.mass",
+                                         "gravity",           "start.contact", "start.velocity", "start.spin",
                                          "start.orientation", "t_end"};
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const InputError e = scene_error(replaced(base_scene_text(), cases[i].first, cases[i].second));
@@ -101,7 +101,8 @@ TEST(Limits, NonFiniteNumbersInEveryNumericKeyNameTheKey) {
   EXPECT_EQ(scene_error(with_omega).key(), "start.omega");
   // NaN and Infinity are not JSON
   for (const char* literal : {"NaN", "Infinity", "-Infinity", "nan"}) {
-    const InputError e = scene_error(replaced(base_scene_text(), R"("t_end": 1.0)", R"("t_end": )" + std::string(literal)));
+    const InputError e =
+        scene_error(replaced(base_scene_text(), R"("t_end": 1.0)", R"("t_end": )" + std::string(literal)));
     EXPECT_EQ(e.key(), "");
     EXPECT_NE(e.message().find("invalid JSON at byte"), std::string::npos) << e.what();
   }
@@ -284,8 +285,7 @@ TEST(Limits, TrajectoryWithAnOverflowingStepCountExitsThree) {
   const auto csv = temp_path("overflow.csv");
   const CliOutcome o = rollbench("trajectory plane --integrator rkmk4 --h 1e-300 --out " + csv.string());
   EXPECT_EQ(o.code, 3) << o.err;
-  EXPECT_NE(o.err.find("rollbench: run stopped early at t = 0: max-steps: the step count overflows"),
-            std::string::npos)
+  EXPECT_NE(o.err.find("rollbench: run stopped early at t = 0: max-steps: the step count overflows"), std::string::npos)
       << o.err;
 }
 
