@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The main job: build, run the default benchmark preset (every registered
-# integrator on every shipped scene, plus the stability study), time the
+# integrator on every shipped scene, plus the stability and horizon studies), time the
 # fixed-step methods per step with Google Benchmark, and make the plots.
 # Everything lands in out/ (override with OUT=dir). Installs what it needs
 # first (apt, only when something is missing).
