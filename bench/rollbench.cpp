@@ -185,7 +185,14 @@ std::string json_text(const nlohmann::json& j) {
   return j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + '\n';
 }
 
-void write_json(const nlohmann::json& j, const std::string& path) { rb::write_output_file(path, json_text(j), "out"); }
+// "-": standard output
+void write_json(const nlohmann::json& j, const std::string& path) {
+  if (path == "-") {
+    std::fputs(json_text(j).c_str(), stdout);
+    return;
+  }
+  rb::write_output_file(path, json_text(j), "out");
+}
 
 // --horizon-steps N enables the study (the default preset's scenes and
 // methods unless named); every name is checked before any reference.

@@ -11,6 +11,7 @@
 
 #include "problems/exact.hpp"
 #include "problems/input_error.hpp"
+#include "problems/safe_name.hpp"
 
 namespace rb {
 
@@ -246,8 +247,8 @@ Scene read_scene(const json& root, const std::string& source) {
       root, "", {"name", "description", "landscape", "params", "domain", "ball", "gravity", "start", "t_end", "exact"});
   Scene s;
   s.source = source;
-  s.name = string_at(required_key(root, "", "name"), "name");
-  if (s.name.empty()) throw InputError("must not be empty", "name");
+  // a name, never a path: it is shown, and a file name may be made of it
+  s.name = check_safe_name(string_at(required_key(root, "", "name"), "name"), "name");
   if (const json* d = optional_key(root, "description")) s.description = string_at(*d, "description");
   s.landscape = string_at(required_key(root, "", "landscape"), "landscape");
   if (const json* p = optional_key(root, "params")) {

@@ -31,9 +31,18 @@ std::string temporary_name(const std::string& path) {
   return (p.parent_path() / name).string();
 }
 
-bool is_other_than_regular_file(const std::string& path) {
+// What the target is when it exists and is not a regular file, after
+// following a symlink (lstat, then stat): "" for none or a regular file.
+std::string non_regular_kind(const std::string& path) {
   struct stat st {};
-  return ::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode);
+  if (::lstat(path.c_str(), &st) != 0) return "";
+  if (S_ISLNK(st.st_mode) && ::stat(path.c_str(), &st) != 0) return "";  // a dangling link: replaced
+  if (S_ISREG(st.st_mode)) return "";
+  if (S_ISFIFO(st.st_mode)) return "a FIFO";
+  if (S_ISDIR(st.st_mode)) return "a folder";
+  if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) return "a device";
+  if (S_ISSOCK(st.st_mode)) return "a socket";
+  return "not a regular file";
 }
 
 }  // namespace
@@ -41,12 +50,10 @@ bool is_other_than_regular_file(const std::string& path) {
 OutputFile::OutputFile(std::string path, std::string option) : path_(std::move(path)), option_(std::move(option)) {
   const auto refuse = [&] { throw InputError("cannot open '" + path_ + "' for writing", option_); };
   if (path_.empty() || path_.back() == '/') refuse();
-  if (is_other_than_regular_file(path_)) {
-    if (std::filesystem::is_directory(path_)) refuse();
-    fd_ = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
-    if (fd_ < 0) refuse();
-    return;
-  }
+  // only regular files are written: never a FIFO (open would hang with no
+  // reader), a device or what a planted symlink points at
+  if (const std::string kind = non_regular_kind(path_); !kind.empty())
+    throw InputError("'" + path_ + "' exists and is " + kind + "; outputs are written only to regular files", option_);
   for (int attempt = 0; attempt < 100 && fd_ < 0; ++attempt) {
     temporary_ = temporary_name(path_);
     // 0666 less the umask: the mode a plain open would give the file
@@ -75,11 +82,23 @@ void OutputFile::commit() {
     if (n <= 0) fail("write");
     written += static_cast<std::size_t>(n);
   }
+  if (::fsync(fd_) != 0) fail("fsync");  // the bytes on disk before the name points at them
   const int fd = fd_;
   fd_ = -1;
   if (::close(fd) != 0) fail("close");
-  if (!temporary_.empty() && ::rename(temporary_.c_str(), path_.c_str()) != 0) fail("rename");
+  // the target may have become something else since it was checked
+  if (const std::string kind = non_regular_kind(path_); !kind.empty()) {
+    errno = EEXIST;
+    fail(("the target became " + kind).c_str());
+  }
+  if (::rename(temporary_.c_str(), path_.c_str()) != 0) fail("rename");
   committed_ = true;
+  std::string folder = std::filesystem::path(path_).parent_path().string();
+  if (folder.empty()) folder = ".";
+  if (const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dir >= 0) {
+    ::fsync(dir);  // the rename itself on disk
+    ::close(dir);
+  }
 }
 
 void write_output_file(const std::string& path, const std::string& text, const std::string& option) {

@@ -4,9 +4,10 @@
 // to a new file next to the target (opened O_CREAT | O_EXCL | O_NOFOLLOW
 // under a unique name) and commit() renames it onto the target. A run that
 // fails before commit leaves an existing file as it was and no partial one:
-// the temporary file is removed. A target that exists and is not a regular
-// file (a FIFO, /dev/stdout) is written in place, since there is nothing
-// there to lose and a rename would replace the device.
+// the temporary file is removed. The temporary is fsync'ed before the rename
+// and the folder after it. A target that exists and is not a regular file
+// (a FIFO, a device, a folder, or a symlink to one) is refused with an
+// InputError naming the path: output goes only to regular files.
 #include <sstream>
 #include <string>
 
@@ -28,7 +29,7 @@ class OutputFile {
   void commit();
 
  private:
-  std::string path_, option_, temporary_;  // temporary_ empty: writing in place
+  std::string path_, option_, temporary_;
   int fd_ = -1;
   bool committed_ = false;
   std::ostringstream buffer_;

@@ -1,5 +1,8 @@
 #include "bench/lib/reference.hpp"
 
+#include <openssl/evp.h>
+
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -7,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "bench/lib/json_input.hpp"
 #include "bench/lib/output_file.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
@@ -37,15 +41,54 @@ std::vector<ReferencePoint> solve(const Problem& problem, const std::string& met
   return points;
 }
 
-std::string cache_key(const std::string& scene_content, const std::vector<double>& times, const ReferenceSettings& s) {
-  std::ostringstream key;
-  key.precision(17);
-  key << kReferenceFormat << '|' << code_version() << '|' << s.primary << '|' << s.cross_check << '|' << s.h << '|'
-      << scene_content << '|';
-  for (double t : times) key << t << ',';
-  char hex[32];
-  std::snprintf(hex, sizeof hex, "%016zx", std::hash<std::string>{}(key.str()));
+std::string sha256_hex(const std::string& text) {
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int size = 0;
+  EVP_Digest(text.data(), text.size(), digest, &size, EVP_sha256(), nullptr);
+  std::string hex;
+  char byte[3];
+  for (unsigned int i = 0; i < size; ++i) std::snprintf(byte, sizeof byte, "%02x", digest[i]), hex += byte;
   return hex;
+}
+
+// What an entry is made from: the one list a cached entry must match field
+// for field. Every setting of the reference is in it (ReferenceSettings
+// whole, but the folder), so a new setting there must be added here.
+nlohmann::json made_from(const std::string& scene_content, const std::vector<double>& times,
+                         const ReferenceSettings& s) {
+  return {{"format", kReferenceFormat},
+          {"code_version", code_version()},
+          {"scene_sha256", sha256_hex(scene_content)},
+          {"primary", s.primary},
+          {"cross_check", s.cross_check},
+          {"h", s.h},
+          {"times", times}};
+}
+
+// Why a cached entry cannot be used, or "" when it can.
+std::string entry_problem(const nlohmann::json& j, const nlohmann::json& expected, const std::vector<double>& times) {
+  if (!j.is_object() || !j.contains("made_from") || !j.contains("checksum") || !j.contains("reference"))
+    return "not a cache entry";
+  if (j["made_from"] != expected) return "made from another scene, grid, method or code version";
+  if (!j["checksum"].is_string() || j["checksum"] != sha256_hex(j["reference"].dump() + j["made_from"].dump()))
+    return "checksum differs";
+  const nlohmann::json& r = j["reference"];
+  if (!r.is_object() || !r.contains("kind") || !r.contains("t") || !r.contains("points")) return "fields missing";
+  if (r["t"] != nlohmann::json(times)) return "another output grid";
+  const bool none = r["kind"] == "none";
+  if (!none && r["kind"] != "exact" && r["kind"] != "computed") return "unknown kind";
+  const nlohmann::json& points = r["points"];
+  if (!points.is_array() || points.size() != (none ? 0 : times.size()))
+    return "holds " + std::to_string(points.is_array() ? points.size() : 0) + " points for " +
+           std::to_string(times.size()) + " output times";
+  for (const nlohmann::json& row : points) {
+    if (!row.is_array() || row.size() != 17) return "a point without its 17 numbers";
+    for (const nlohmann::json& v : row)
+      if (!v.is_number() || !std::isfinite(v.get<double>())) return "a point with a value that is not finite";
+  }
+  if (!r.contains("error") || !r["error"].is_number() || !(r["error"].get<double>() >= 0.0))
+    return "no finite own error";
+  return "";
 }
 
 nlohmann::json to_json(const Reference& r) {
@@ -121,18 +164,28 @@ Reference make_reference(const Problem& problem, const std::string& scene_conten
                          const ReferenceSettings& settings) {
   namespace fs = std::filesystem;
   fs::path cache_file;
+  nlohmann::json key;
   if (!settings.cache_dir.empty()) {
-    cache_file =
-        fs::path(settings.cache_dir) / (problem.name() + "-" + cache_key(scene_content, times, settings) + ".json");
-    std::ifstream in(cache_file);
-    if (in) {
+    key = made_from(scene_content, times, settings);
+    // the file's name is a hash of what it is made from: never the scene's name
+    cache_file = fs::path(settings.cache_dir) / ("reference-" + sha256_hex(key.dump()).substr(0, 32) + ".json");
+    std::error_code ec;
+    if (fs::exists(cache_file, ec)) {
+      std::string why;
       try {
-        Reference cached = from_json(nlohmann::json::parse(in));
-        cached.from_cache = true;
-        return cached;
-      } catch (const std::exception&) {
-        // a damaged cache entry is recomputed and overwritten
+        const nlohmann::json entry = read_json_file(cache_file.string(), "cached reference", "cache");
+        why = entry_problem(entry, key, times);
+        if (why.empty()) {
+          Reference cached = from_json(entry["reference"]);
+          cached.from_cache = true;
+          return cached;
+        }
+      } catch (const std::exception& e) {
+        why = e.what();
       }
+      // never trusted: a damaged or foreign entry is recomputed and replaced
+      std::fprintf(stderr, "rollbench: note: the cached reference '%s' of scene %s is not used (%s); recomputing\n",
+                   cache_file.c_str(), problem.name().c_str(), why.c_str());
     }
   }
 
@@ -186,8 +239,12 @@ Reference make_reference(const Problem& problem, const std::string& scene_conten
     // whole or not at all, also when shards write the same entry at once;
     // a cache that cannot be written is only slower next time
     try {
-      write_output_file(cache_file.string(),
-                        to_json(ref).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), "cache");
+      nlohmann::json entry = {{"made_from", key}, {"reference", to_json(ref)}};
+      // the checksum over the text as it is read back (dump is canonical)
+      entry["reference"] =
+          nlohmann::json::parse(entry["reference"].dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+      entry["checksum"] = sha256_hex(entry["reference"].dump() + entry["made_from"].dump());
+      write_output_file(cache_file.string(), entry.dump(), "cache");
     } catch (const InputError&) {
     }
   }

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "bench/lib/json_input.hpp"
 #include "bench/lib/order_fit.hpp"
 #include "bench/lib/regime_scenes.hpp"
 #include "problems/input_error.hpp"
@@ -439,14 +440,7 @@ json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes, c
 }
 
 json read_report(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError("cannot read the report '" + path + "'", "report");
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw InputError("'" + path + "' is not JSON: " + e.what(), "report");
-  }
+  const json j = read_json_file(path, "report", "report");
   if (!j.is_object() || !j.contains("schema") || j["schema"] != kReportSchema)
     throw InputError("'" + path + "' is not a " + std::string(kReportSchema) + " report", "schema");
   return j;
@@ -462,12 +456,31 @@ std::string joined(const std::vector<long>& numbers) {
 
 // A merge needs every shard of the sweep once: a shard whose job failed is
 // named, so that only it has to run again.
-void check_every_shard_once(const std::vector<json>& shards) {
-  const long count = shards.front().at("options").at("shard").at(1).get<long>();
+// A shard's "options.shard" [index, count], checked: whole numbers with
+// 0 <= index < count, or an InputError naming the key and the file.
+std::pair<long, long> shard_of(const json& report, const std::string& file) {
+  const std::string key = "options.shard";
+  const auto refuse = [&](const std::string& what) -> std::pair<long, long> {
+    throw InputError("'" + file + "': " + what, key);
+  };
+  if (!report.contains("options") || !report["options"].is_object() || !report["options"].contains("shard"))
+    return refuse("is missing");
+  const json& shard = report["options"]["shard"];
+  if (!shard.is_array() || shard.size() != 2 || !shard[0].is_number() || !shard[1].is_number())
+    return refuse("must be [index, count], two whole numbers");
+  const double index = shard[0].get<double>(), count = shard[1].get<double>();
+  const bool whole = index == std::floor(index) && count == std::floor(count);
+  if (!whole || !(count >= 1.0 && count <= 1e6) || !(index >= 0.0 && index < count))
+    return refuse("must be [index, count], whole numbers with 0 <= index < count <= 1000000");
+  return {static_cast<long>(index), static_cast<long>(count)};
+}
+
+void check_every_shard_once(const std::vector<json>& shards, const std::vector<std::string>& files) {
+  const auto file_of = [&](std::size_t k) { return k < files.size() ? files[k] : "shard report " + std::to_string(k); };
+  const long count = shard_of(shards.front(), file_of(0)).second;
   std::vector<long> have, missing;
-  for (const json& s : shards) {
-    const long index = s.at("options").at("shard").at(0).get<long>();
-    const long of = s.at("options").at("shard").at(1).get<long>();
+  for (std::size_t k = 0; k < shards.size(); ++k) {
+    const auto [index, of] = shard_of(shards[k], file_of(k));
     if (of != count)
       throw InputError(
           "the reports come from sweeps cut into " + std::to_string(count) + " and " + std::to_string(of) + " shards",
@@ -523,7 +536,7 @@ const json& list_at(const json& report, const std::string& section, const std::s
 
 json merge_reports(const std::vector<json>& shards, const std::vector<std::string>& files) {
   if (shards.empty()) throw InputError("nothing to merge", "reports");
-  check_every_shard_once(shards);
+  check_every_shard_once(shards, files);
   json merged = shards.front();
   json base_options = merged.at("options");
   base_options.erase("shard");
@@ -542,10 +555,20 @@ json merge_reports(const std::vector<json>& shards, const std::vector<std::strin
     for (std::size_t i = 0; i < entries.size(); ++i)
       runs.push_back(
           {index_of(entries[i], "the report '" + file + "': runs[" + std::to_string(i) + "]"), entries[i], fits[i]});
-    for (const json& d : list_at(s, "stability", "drift", file)) drift.push_back(d);
-    for (const json& d : list_at(s, "stability", "largest_stable_h", file)) stable.push_back(d);
-    if (s.contains("horizon"))  // absent from reports older than the horizon study
-      for (const json& d : list_at(s, "horizon", "runs", file)) horizon.push_back(d);
+    // entries sorted by their index below: each must have a number there
+    const auto indexed = [&](const char* section, const char* list, json& into) {
+      const json& items = list_at(s, section, list, file);
+      for (std::size_t i = 0; i < items.size(); ++i) {
+        if (!items[i].is_object() || !items[i].contains("index") || !items[i]["index"].is_number())
+          throw InputError("the report '" + file + "': " + section + "." + list + "[" + std::to_string(i) +
+                               "].index is missing or not a number",
+                           "reports");
+        into.push_back(items[i]);
+      }
+    };
+    indexed("stability", "drift", drift);
+    indexed("stability", "largest_stable_h", stable);
+    if (s.contains("horizon")) indexed("horizon", "runs", horizon);  // absent from reports older than the study
     const json& refs = list_at(s, "references", "", file);
     for (std::size_t i = 0; i < refs.size(); ++i) {
       const json& r = refs[i];
@@ -559,7 +582,7 @@ json merge_reports(const std::vector<json>& shards, const std::vector<std::strin
         references.push_back(r);
     }
   }
-  auto by_index = [](const json& a, const json& b) { return a.at("index").get<long>() < b.at("index").get<long>(); };
+  auto by_index = [](const json& a, const json& b) { return a["index"].get<double>() < b["index"].get<double>(); };
   std::sort(runs.begin(), runs.end(), [](const ShardRun& a, const ShardRun& b) { return a.index < b.index; });
   std::sort(drift.begin(), drift.end(), by_index);
   std::sort(stable.begin(), stable.end(), by_index);

@@ -6,11 +6,14 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 
+#include "bench/lib/json_input.hpp"
 #include "bench/lib/report.hpp"
 #include "bench/lib/score.hpp"
 #include "bench/lib/sweep.hpp"
 #include "problems/input_error.hpp"
+#include "problems/safe_name.hpp"
 
 namespace rb {
 
@@ -60,14 +63,27 @@ class PeerFields {
   std::string file_;
 };
 
-json read_json(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError("cannot read the peer file '" + path + "'", "peers");
-  try {
-    return json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw InputError("'" + path + "' is not JSON: " + e.what(), "peers");
-  }
+json read_json(const std::string& path) { return read_json_file(path, "peer file", "peers"); }
+
+// The largest trajectory CSV a peer file may name.
+constexpr std::size_t kMaxPeerTrajectoryBytes = std::size_t{256} << 20;
+
+// A trajectory a peer file names: a relative path inside the peer file's own
+// folder (no absolute path, no "..", no symlink out of it), a regular file
+// of at most kMaxPeerTrajectoryBytes. Its text, or an InputError.
+std::string read_peer_trajectory(const std::filesystem::path& folder, const std::string& name, const std::string& key,
+                                 const PeerFields& f) {
+  namespace fs = std::filesystem;
+  const fs::path relative(name);
+  bool climbs = relative.is_absolute() || name.empty() || name.find('\0') != std::string::npos;
+  for (const fs::path& part : relative) climbs = climbs || part == "..";
+  if (climbs) f.refuse(key, "'" + escaped_excerpt(name) + "' is not a path inside the peer file's folder");
+  std::error_code ec;
+  const fs::path base = fs::weakly_canonical(folder.empty() ? fs::path(".") : folder, ec);
+  const fs::path resolved = fs::weakly_canonical(base / relative, ec);
+  const auto [end, ignored] = std::mismatch(base.begin(), base.end(), resolved.begin(), resolved.end());
+  if (ec || end != base.end()) f.refuse(key, "'" + escaped_excerpt(name) + "' leads out of the peer file's folder");
+  return read_regular_file(resolved.string(), "trajectory", key, kMaxPeerTrajectoryBytes);
 }
 
 Status status_named(const std::string& name, const PeerFields& f, const std::string& key) {
@@ -110,8 +126,7 @@ RunRecord peer_run(const json& p, const std::string& where, const SweepScene& s,
   r.message = f.text(p, "message", where);
 
   const std::filesystem::path csv_path = folder / f.text(p, "trajectory", where);
-  std::ifstream csv(csv_path);
-  if (!csv) f.refuse(where + "trajectory", "cannot read '" + csv_path.string() + "'");
+  std::istringstream csv(read_peer_trajectory(folder, f.text(p, "trajectory", where), where + "trajectory", f));
   ScoredTrajectory scored = score_rows(s, spacing, csv, csv_path.string());
   RunErrors error_max = scored.record.error_max;
   r.error = scored.record.error;

@@ -2,6 +2,7 @@
 // whole; one that is not committed leaves the old file as it was and no
 // temporary file behind; an unwritable place is refused at once.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -65,8 +66,7 @@ TEST(OutputFile, AFailureBeforeCommitLeavesTheOldFileAndNoTemporary) {
 
 TEST(OutputFile, AnUnwritablePlaceIsRefusedAtOnce) {
   Folder folder;
-  for (const std::string& bad :
-       std::vector<std::string>{"/nonexistent/dir/x.csv", folder.path.string(), folder.path.string() + "/"}) {
+  for (const std::string& bad : std::vector<std::string>{"/nonexistent/dir/x.csv", folder.path.string() + "/"}) {
     try {
       OutputFile file(bad, "out");
       ADD_FAILURE() << bad << " was taken";
@@ -76,11 +76,43 @@ TEST(OutputFile, AnUnwritablePlaceIsRefusedAtOnce) {
   }
 }
 
-TEST(OutputFile, ANonRegularTargetIsWrittenInPlace) {
-  OutputFile file("/dev/null", "out");
-  file.stream() << "gone";
-  EXPECT_NO_THROW(file.commit());
-  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+// issue 32: a FIFO (open would hang with no reader), a device, a folder, or
+// a symlink planted at the output path pointing at one, is refused at once,
+// naming the path; nothing is written there and no temporary is left.
+TEST(OutputFile, ANonRegularTargetOrALinkToOneIsRefused) {
+  Folder folder;
+  const fs::path fifo = folder.path / "fifo", link = folder.path / "link", device_link = folder.path / "null";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  fs::create_symlink(fifo, link);
+  fs::create_symlink("/dev/null", device_link);
+  const std::vector<std::pair<std::string, std::string>> cases = {{fifo.string(), "a FIFO"},
+                                                                  {link.string(), "a FIFO"},
+                                                                  {"/dev/null", "a device"},
+                                                                  {device_link.string(), "a device"},
+                                                                  {folder.path.string(), "a folder"}};
+  for (const auto& [target, kind] : cases) {
+    try {
+      OutputFile file(target, "out");
+      ADD_FAILURE() << target << " was taken";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()),
+                "'out': '" + target + "' exists and is " + kind + "; outputs are written only to regular files");
+    }
+  }
+  EXPECT_EQ(folder.entries(), 3u);  // the FIFO and the two links, no temporary
+  EXPECT_TRUE(fs::is_fifo(fifo));
+}
+
+// A symlink to a regular file is replaced by the new file; its old target is left as it was.
+TEST(OutputFile, ALinkToARegularFileIsReplacedNotFollowed) {
+  Folder folder;
+  const fs::path victim = folder.path / "victim", link = folder.path / "out.json";
+  std::ofstream(victim) << "keep";
+  fs::create_symlink(victim, link);
+  write_output_file(link.string(), "new", "out");
+  EXPECT_EQ(read(victim), "keep");
+  EXPECT_FALSE(fs::is_symlink(link));
+  EXPECT_EQ(read(link), "new");
 }
 
 }  // namespace

@@ -62,7 +62,7 @@ TEST(CliErrors, RunAndMergeOptionsNameTheirOption) {
        "rollbench: 'integrator': unknown integrator 'nope' (`rollbench list` shows them all)\n"},
       {"run --preset quick --shard 3/2 --out OUT", 2, "rollbench: 'shard': expected i/n with 0 <= i < n, got '3/2'\n"},
       {"merge /no/such/report.json --out OUT", 2,
-       "rollbench: 'report': cannot read the report '/no/such/report.json'\n"},
+       "rollbench: 'report': cannot read the report '/no/such/report.json' (No such file or directory)\n"},
       {"merge " RB_SCENE_DIR "/plane.json --out OUT", 2, "is not a rollbench.report/2 report\n"},
   };
   for (const CliCase& c : cases) expect_cli(c);
