@@ -11,9 +11,21 @@ differ by more than 5 %, so that timing noise is not reported as change;
 with too few timed repeats for that test to reach p < 0.01 at all (its
 smallest p with n and m samples is 2 / C(n + m, n): 5 against 5 are
 needed), it says that no timing change can be detected, not "No change".
+Per integrator, a pooled test over all its runs in both reports: the
+log ratio of each run's median times, log(B / A), tested by a Wilcoxon
+signed-rank test (SciPy, two-sided) against zero; the integrator's time
+counts as changed when p < 0.01 over at least 8 runs (the fewest for
+which that test can reach 0.01: its smallest p is 2 / 2^n) and the median ratio differs from 1 by
+more than 5 %. So a uniform slowdown of one method is found at 3 repeats,
+where no single run's test can see it.
+Reports whose runs are not the same measurement are refused (exit 2),
+naming both values: a scene's end time, the output grid (dt_out) or the
+error grid (error_dt) differ. A different step or tolerance ladder is
+stated (runs only in one report), not refused.
 Errors and drift are deterministic: a relative change over 5 % counts,
 except between values that both sit at rounding level. Prints a table of
-the changes (every row with --all); exit status 0 (2 for an unreadable report).
+the changes (every row with --all); exit status 0 (2 for an unreadable
+report or two reports that do not measure the same runs).
 """
 import argparse
 import math
@@ -95,6 +107,33 @@ def time_change(a, b):
     return ratio, p, changed
 
 
+# a two-sided signed-rank test on n values has smallest p 2 / 2^n: 8 runs are the fewest that can reach 0.01
+POOLED_MIN_RUNS = 8
+
+
+def pooled_time_changes(rows):
+    """Per integrator over its runs in both reports: {integrator: {"runs", "ratio", "p", "changed"}}.
+
+    The values tested are log(median B / median A) per run; "ratio" is exp of their median."""
+    by_method = {}
+    for row in rows:
+        ma, mb = row["time"]
+        if not (math.isfinite(ma) and math.isfinite(mb)) or ma <= 0 or mb <= 0:
+            continue
+        by_method.setdefault(row["key"][1], []).append(math.log(mb / ma))
+    out = {}
+    for name, logs in by_method.items():
+        logs = np.array(logs)
+        ratio = float(math.exp(np.median(logs)))
+        if logs.size < POOLED_MIN_RUNS or not np.any(logs != 0.0):
+            p = 1.0  # too few runs to conclude, or every ratio exactly 1
+        else:
+            p = float(stats.wilcoxon(logs, alternative="two-sided").pvalue)
+        changed = p < ALPHA and abs(ratio - 1.0) > TIME_RATIO
+        out[name] = {"runs": int(logs.size), "ratio": ratio, "p": p, "changed": changed}
+    return out
+
+
 def compare_runs(a, b, metrics=(rp.DEFAULT_METRIC,)):
     """One row: the values side by side and the list of changes (kind, text) in the metrics given."""
     changes = []
@@ -136,15 +175,78 @@ def compare_orders(a, b):
     return rows
 
 
+class Mismatch(Exception):
+    """The two reports do not measure the same runs."""
+
+
+def _grid(report, key):
+    value = rp.num((report.get("options") or {}).get(key))
+    return value if math.isfinite(value) else None
+
+
+def _end_times(report):
+    """{scene: t_end} from the references (every run of a scene ends there), else the runs' own."""
+    out = {}
+    for ref in report.get("references") or []:
+        t = rp.num(ref.get("t_end"))
+        if math.isfinite(t):
+            out[ref["scene"]] = t
+    for run in rp.runs(report):
+        t = rp.num(run.get("t_end"))
+        if run["scene"] not in out and math.isfinite(t):
+            out[run["scene"]] = t
+    return out
+
+
+def check_comparable(a, b, name_a="A", name_b="B"):
+    """Raise Mismatch naming both values when a scene's end time or the output or error grid differ."""
+    problems = []
+    ta, tb = _end_times(a), _end_times(b)
+    for scene in ta:
+        if scene in tb and ta[scene] != tb[scene]:
+            problems.append(f"scene '{scene}' ends at t = {ta[scene]:.12g} in {name_a} but at "
+                            f"t = {tb[scene]:.12g} in {name_b}")
+    for key, what in (("dt_out", "output grid dt_out"), ("error_dt", "error grid error_dt")):
+        ga, gb = _grid(a, key), _grid(b, key)
+        if ga != gb:
+            problems.append(f"the {what} is {_fmt_grid(ga)} in {name_a} but {_fmt_grid(gb)} in {name_b}")
+    if problems:
+        raise Mismatch("the reports do not measure the same runs: " + "; ".join(problems))
+
+
+def _fmt_grid(value):
+    return "none" if value is None else f"{value:.12g}"
+
+
+def ladder_note(a, b, name_a="A", name_b="B"):
+    """A sentence when the step or tolerance ladders differ, else None."""
+    notes = []
+    for key, what in (("h", "step ladder"), ("tol", "tolerance ladder")):
+        la = [rp.num(x) for x in (a.get("options") or {}).get(key) or []]
+        lb = [rp.num(x) for x in (b.get("options") or {}).get(key) or []]
+        if la != lb:
+            notes.append(f"the {what} differs ({len(la)} values in {name_a}, {len(lb)} in {name_b})")
+    if not notes:
+        return None
+    return "Note: " + "; ".join(notes) + ": only the runs in both are compared (listed below)."
+
+
 def compare_reports(a, b):
-    """{"runs": rows, "orders": rows, "only_a": keys, "only_b": keys, "changes": [(key, kind, text)]}."""
+    """{"runs": rows, "orders": rows, "pooled": {integrator: test}, "only_a": keys, "only_b": keys,
+    "changes": [(key, kind, text)]}; a pooled change's key is ("all scenes", integrator, "N runs")."""
     runs_b = {run_key(r): r for r in rp.runs(b)}
     keys_a = [run_key(r) for r in rp.runs(a)]
     metrics = rp.unique(rp.metrics(a) + rp.metrics(b))
     rows = [compare_runs(r, runs_b[run_key(r)], metrics) for r in rp.runs(a) if run_key(r) in runs_b]
     orders = compare_orders(a, b)
     changes = [(row["key"], kind, text) for row in rows + orders for kind, text in row["changes"]]
-    return {"runs": rows, "orders": orders, "changes": changes,
+    pooled = pooled_time_changes(rows)
+    for name, t in pooled.items():
+        if t["changed"]:
+            changes.append((("all scenes", name, f"{t['runs']} runs"), "time (pooled)",
+                            f"×{t['ratio']:.3g} {'slower' if t['ratio'] > 1 else 'faster'} "
+                            f"(median over its runs, signed-rank p = {t['p']:.2g})"))
+    return {"runs": rows, "orders": orders, "changes": changes, "pooled": pooled,
             "only_a": [k for k in keys_a if k not in runs_b],
             "only_b": [k for k in runs_b if k not in set(keys_a)]}
 
@@ -161,6 +263,13 @@ def format_markdown(result, name_a="A", name_b="B", every_row=False):
              f"raw samples) and a median change over {TIME_RATIO:.0%}; error and drift changes over "
              f"{VALUE_RATIO:.0%}; order changes over {ORDER_DELTA}.", ""]
     changes = result["changes"]
+    if result.get("note"):
+        lines += [result["note"], ""]
+    pooled = result.get("pooled") or {}
+    if pooled:
+        lines += [f"Timing, pooled: per integrator, a Wilcoxon signed-rank test of log(median {name_b} / median "
+                  f"{name_a}) over its runs ({len(pooled)} tests, at least {POOLED_MIN_RUNS} runs each); a change "
+                  f"needs p < {ALPHA} and a median ratio over {TIME_RATIO:.0%} from 1.", ""]
     blind = [r for r in result["runs"] if not r.get("detectable", True)]
     if blind:
         fewest = min(min(r["repeats"]) for r in blind)
@@ -178,7 +287,12 @@ def format_markdown(result, name_a="A", name_b="B", every_row=False):
         lines += _table(["scene", "integrator", "setting", "what", "change"],
                         [[*key, ""][:3] + [kind, text] for key, kind, text in changes])
     else:
-        if blind and len(blind) == len(result["runs"]):
+        pooled_ok = [n for n, t in pooled.items() if t["runs"] >= POOLED_MIN_RUNS]
+        if blind and pooled_ok:
+            lines += [f"No change in status, error, drift or order, nor in time: no single run has repeats enough "
+                      f"for its own test ({len(blind)} above), and the pooled test finds no change in "
+                      f"{len(pooled_ok)} integrators with {POOLED_MIN_RUNS} runs or more."]
+        elif blind and len(blind) == len(result["runs"]):
             lines += ["No change in status, error, drift or order; no timing change can be detected (too few "
                       "timed repeats, above)."]
         elif blind:
@@ -213,10 +327,13 @@ def main(argv=None):
     args = parser.parse_args(argv)
     try:
         a, b = rp.load(args.a), rp.load(args.b)
-    except rp.ReportError as e:
+        check_comparable(a, b, args.a, args.b)
+    except (rp.ReportError, Mismatch) as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
-    text = format_markdown(compare_reports(a, b), args.a, args.b, args.all)
+    result = compare_reports(a, b)
+    result["note"] = ladder_note(a, b, args.a, args.b)
+    text = format_markdown(result, args.a, args.b, args.all)
     print(text)
     if args.out:
         with open(args.out, "w", encoding="utf-8") as f:

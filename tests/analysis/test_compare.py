@@ -50,14 +50,17 @@ class CompareReports(unittest.TestCase):
     def test_a_planted_slowdown_and_nothing_else(self):
         b = syn.slowed(self.a, 2.0)
         result = compare.compare_reports(self.a, b)
-        self.assertEqual(len(result["changes"]), len(self.a["runs"]))
-        self.assertEqual({kind for _, kind, _ in result["changes"]}, {"time"})
+        per_run = [c for c in result["changes"] if c[1] == "time"]
+        self.assertEqual(len(per_run), len(self.a["runs"]))
+        self.assertEqual({kind for _, kind, _ in result["changes"]}, {"time", "time (pooled)"})
+        self.assertEqual({key[1] for key, kind, _ in result["changes"] if kind == "time (pooled)"},
+                         {r["integrator"] for r in self.a["runs"]})
         for row in result["runs"]:
             self.assertAlmostEqual(row["ratio"], 2.0, places=12)
             self.assertLess(row["p"], compare.ALPHA)
         done, _ = run_cli(self.a, b)
         self.assertEqual(done.returncode, 0, done.stderr)
-        self.assertEqual(done.stdout.count("×2 slower"), len(self.a["runs"]))
+        self.assertEqual(done.stdout.count("×2 slower"), len(result["changes"]))
         self.assertNotIn("No change", done.stdout)
 
     def test_too_few_repeats_cannot_see_a_slowdown_and_say_so(self):
@@ -69,22 +72,33 @@ class CompareReports(unittest.TestCase):
         a2 = keep(self.a, 2)
         b2 = keep(syn.slowed(self.a, 2.0), 2)
         result = compare.compare_reports(a2, b2)
-        self.assertEqual(result["changes"], [])  # 2 against 2: the smallest p is 1/3
+        # 2 against 2: the smallest p of a single run's test is 1/3; only the pooled test sees it
+        self.assertEqual([kind for row in result["runs"] for kind, _ in row["changes"]], [])
+        self.assertEqual({kind for _, kind, _ in result["changes"]}, {"time (pooled)"})
         self.assertAlmostEqual(compare.smallest_p(2, 2), 1.0 / 3.0)
         self.assertGreater(compare.smallest_p(4, 4), compare.ALPHA)
         self.assertLess(compare.smallest_p(5, 5), compare.ALPHA)
-        done, _ = run_cli(a2, b2)
+        # one run per method: nothing to pool either
+        a1 = syn.subset(a2, "plane", list(syn.FIXED))
+        a1["runs"] = [r for r in a1["runs"] if r["h"] == syn.HS[0]]
+        b1 = syn.subset(b2, "plane", list(syn.FIXED))
+        b1["runs"] = [r for r in b1["runs"] if r["h"] == syn.HS[0]]
+        self.assertEqual(compare.compare_reports(a1, b1)["changes"], [])
+        done, _ = run_cli(a1, b1)
         self.assertEqual(done.returncode, 0, done.stderr)
         self.assertNotIn("No change:", done.stdout)
         self.assertIn("no timing change can be detected", done.stdout)
+        done, _ = run_cli(a2, b2)
+        self.assertEqual(done.returncode, 0, done.stderr)
         self.assertIn(f"{len(a2['runs'])} of {len(a2['runs'])} runs have too few timed repeats (as few as 2)",
                       done.stdout)
 
     def test_a_slowdown_of_one_method_is_found_there_only(self):
         b = syn.slowed(self.a, 2.0, integrator="rkmk4")
         keys = {key for key, kind, _ in compare.compare_reports(self.a, b)["changes"]}
-        self.assertEqual(keys, {(r["scene"], r["integrator"], compare.rp.setting(r, 12))
-                                for r in self.a["runs"] if r["integrator"] == "rkmk4"})
+        mine = [r for r in self.a["runs"] if r["integrator"] == "rkmk4"]
+        self.assertEqual(keys, {(r["scene"], r["integrator"], compare.rp.setting(r, 12)) for r in mine}
+                         | {("all scenes", "rkmk4", f"{len(mine)} runs")})
 
     def test_timing_noise_is_not_change(self):
         b = copy.deepcopy(self.a)
@@ -138,6 +152,115 @@ class CompareReports(unittest.TestCase):
             if run["family"] == "rkmk":
                 run["drift"]["rotation_defect"] *= 3  # 1e-15 -> 3e-15
         self.assertEqual(compare.compare_reports(self.a, b)["changes"], [])
+
+
+def noisy(report, rng, sigma=0.05, repeats=3, factor=1.0, integrator=None):
+    """A rerun: every run's samples drawn anew around its median (lognormal, sigma), one method slowed."""
+    out = copy.deepcopy(report)
+    for run in out["runs"]:
+        w = run["wall_s"]
+        scale = factor if integrator in (None, run["integrator"]) else 1.0
+        w["samples"] = list(w["median"] * scale * rng.lognormal(0.0, sigma, repeats))
+        w["median"], w["min"], w["max"] = (float(np.median(w["samples"])), min(w["samples"]), max(w["samples"]))
+    return out
+
+
+class PooledTime(unittest.TestCase):
+    """A uniform 10 % slowdown of one method at 3 repeats: no single run can show it, the pooled test does."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.base = syn.make_report()
+
+    def test_a_ten_percent_slowdown_of_one_method_is_found(self):
+        for seed in range(20):
+            rng = np.random.default_rng(seed)
+            a = noisy(self.base, rng)
+            b = noisy(self.base, rng, factor=1.10, integrator="rkmk4")
+            result = compare.compare_reports(a, b)
+            pooled = result["pooled"]["rkmk4"]
+            self.assertLess(pooled["p"], 0.01, seed)
+            self.assertAlmostEqual(pooled["ratio"], 1.10, delta=0.05)
+            self.assertTrue(pooled["changed"], seed)
+            found = [(key, kind) for key, kind, _ in result["changes"]]
+            self.assertEqual(found, [(("all scenes", "rkmk4", f"{pooled['runs']} runs"), "time (pooled)")], seed)
+        done, _ = run_cli(a, b)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertIn("| all scenes | rkmk4 |", done.stdout)
+        self.assertRegex(done.stdout, r"\| time \(pooled\) \| ×1\.(0[6-9]|1[0-4])\d* slower")
+
+    def test_reruns_of_the_same_code_report_no_change(self):
+        for seed in range(20):
+            rng = np.random.default_rng(100 + seed)
+            result = compare.compare_reports(noisy(self.base, rng), noisy(self.base, rng))
+            self.assertEqual(result["changes"], [], seed)
+            self.assertTrue(all(t["runs"] >= compare.POOLED_MIN_RUNS for t in result["pooled"].values()))
+
+    def test_a_speedup_is_found_too(self):
+        rng = np.random.default_rng(1)
+        result = compare.compare_reports(noisy(self.base, rng), noisy(self.base, rng, factor=0.9, integrator="rk4"))
+        (key, kind, text), = result["changes"]
+        self.assertEqual((key[1], kind), ("rk4", "time (pooled)"))
+        self.assertRegex(text, r"^×0\.(8[5-9]|9[0-5]\d*) faster")
+
+    def test_too_few_runs_are_not_pooled(self):
+        a = syn.subset(self.base, "plane", ["rkmk4"])
+        a["runs"] = a["runs"][:compare.POOLED_MIN_RUNS - 1]
+        b = syn.slowed(a, 2.0)
+        for run_a, run_b in zip(a["runs"], b["runs"]):
+            run_a["wall_s"]["samples"] = run_a["wall_s"]["samples"][:3]
+            run_b["wall_s"]["samples"] = run_b["wall_s"]["samples"][:3]
+        result = compare.compare_reports(a, b)
+        self.assertEqual(result["pooled"]["rkmk4"]["p"], 1.0)
+        self.assertEqual(result["changes"], [])
+
+
+class Comparable(unittest.TestCase):
+    """Reports with other end times or output grids are refused, naming both; other ladders are stated."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.a = syn.make_report()
+        for ref in cls.a["references"]:
+            ref["t_end"] = 5.0
+        cls.a["options"] = {"t_end": None, "dt_out": None, "error_dt": 0.25, "h": syn.HS, "tol": syn.TOLS}
+
+    def test_another_end_time_is_refused(self):
+        b = copy.deepcopy(self.a)
+        b["references"][1]["t_end"] = 10.0
+        with self.assertRaises(compare.Mismatch) as caught:
+            compare.check_comparable(self.a, b, "old.json", "new.json")
+        self.assertEqual(str(caught.exception), "the reports do not measure the same runs: scene 'valley-sideways' "
+                         "ends at t = 5 in old.json but at t = 10 in new.json")
+        with tempfile.TemporaryDirectory() as tmp:
+            paths = [os.path.join(tmp, n) for n in ("a.json", "b.json")]
+            for path, report in zip(paths, (self.a, b)):
+                with open(path, "w", encoding="utf-8") as f:
+                    json.dump(report, f)
+            done = subprocess.run([sys.executable, os.path.join(ROOT, "analysis", "compare.py"), *paths],
+                                  capture_output=True, text=True)
+        self.assertEqual(done.returncode, 2)
+        self.assertEqual(done.stdout, "")
+        self.assertIn(f"scene 'valley-sideways' ends at t = 5 in {paths[0]} but at t = 10 in {paths[1]}", done.stderr)
+
+    def test_another_output_or_error_grid_is_refused(self):
+        b = copy.deepcopy(self.a)
+        b["options"]["dt_out"] = 0.1
+        b["options"]["error_dt"] = 0.5
+        with self.assertRaises(compare.Mismatch) as caught:
+            compare.check_comparable(self.a, b)
+        self.assertIn("the output grid dt_out is none in A but 0.1 in B", str(caught.exception))
+        self.assertIn("the error grid error_dt is 0.25 in A but 0.5 in B", str(caught.exception))
+
+    def test_the_same_sweep_passes_and_another_ladder_is_stated(self):
+        compare.check_comparable(self.a, copy.deepcopy(self.a))
+        self.assertIsNone(compare.ladder_note(self.a, copy.deepcopy(self.a)))
+        b = copy.deepcopy(self.a)
+        b["options"]["h"] = syn.HS[:-1]
+        b["runs"] = [r for r in b["runs"] if r["adaptive"] or r["h"] != syn.HS[-1]]
+        compare.check_comparable(self.a, b)
+        self.assertEqual(compare.ladder_note(self.a, b), f"Note: the step ladder differs ({len(syn.HS)} values in A, "
+                         f"{len(syn.HS) - 1} in B): only the runs in both are compared (listed below).")
 
 
 def timed(samples):
