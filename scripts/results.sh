@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The measured tables of README.md and docs/: runs the sweeps and writes
 # docs/results/*.md (command, date, commit, machine and wall time in each)
-# and the README's headline block (from the headline sweep),
+# and the README's headline block (from the default preset: every scene where R feeds back),
 # so that no measured number is typed by hand. Run from a built tree
 # (scripts/build.sh); the reports and plots land in OUT (default out/results).
 #   default.md   rollbench run --preset default: every method on every scene
@@ -26,8 +26,8 @@ sweep() {  # name title command...
   shift 2
   wanted "$name" || return 0
   local start end readme=()
-  # the headline sweep also writes the README's headline table
-  [ "$name" != headline ] || readme=(--readme README.md)
+  # the default preset (every scene where R feeds back) also writes the README's headline
+  [ "$name" != default ] || readme=(--readme README.md)
   start=$(date +%s)
   "$@" --out "$out/$name.json" > "$out/$name.txt"
   end=$(date +%s)
