@@ -136,6 +136,20 @@ def scene_line(scene, cells):
             f"{values[-1]:.2f} (median {values[len(values) // 2]:.2f}; repeats span {low:.2f}–{high:.2f}).")
 
 
+def answer_lines(answers):
+    """The first screen's answer: does keeping R on SO(3) pay, where, and by how much ([(scene, ratios)])."""
+    measured = [(scene, v[len(v) // 2]) for scene, v in answers if v]
+    if not measured:
+        return []
+    wins = [f"{s} ({m:.2f})" for s, m in measured if m > 1]
+    loses = [f"{s} ({m:.2f})" for s, m in measured if m <= 1]
+    text = (f"**Where R feeds back, keeping R on SO(3) pays on {len(wins)} of {len(measured)} scenes** (median "
+            "flat/Lie wall time to the same worst error over the run, above 1: the Lie method is cheaper)"
+            + (f": {', '.join(wins)}." if wins else "."))
+    text += f" The flat method wins on {', '.join(loses)}." if loses else " The flat method wins on none."
+    return [text, ""]
+
+
 def findings_section(report, metric=rp.DEFAULT_METRIC):
     """The findings read the worst error over the run (error_max), whatever the tables read."""
     with rp.errors_read("max"):
@@ -157,7 +171,7 @@ def _findings_section(report, metric=rp.DEFAULT_METRIC):
               "and ranges take each Lie method once, against the cheapest flat method with its tableau; bounds "
               "and scenes where the Lie method is exact (every run at the reference floor) are listed apart.", ""]
     summary, rows, pair_rows, unreached = [], [], [], 0
-    bounded, exact_lines, per_scene = [], [], []
+    bounded, exact_lines, per_scene, answers = [], [], [], []
     for scene in scenes:
         kind = scene_kind(report, scene)
         table = costs.cost_rows(report, scene, metric)
@@ -169,6 +183,7 @@ def _findings_section(report, metric=rp.DEFAULT_METRIC):
         exact_lines += [f"{lie} on {scene}" for lie in exact]
         if feeds_back(report, scene):
             per_scene.append(scene_line(scene, cells))
+            answers.append((scene, sorted(r[0] for *_, r in cells)))
         for flat, lie, tableau, ratios in scene_ratios:
             if not any(math.isfinite(ratios[t][0]) for t in costs.TARGETS):
                 unreached += 1  # neither target reached by both: nothing to compare here
@@ -192,6 +207,7 @@ def _findings_section(report, metric=rp.DEFAULT_METRIC):
                      + ", ".join(exact_lines) + ".")
     if bounded:
         lines.append(f"- Bounds, not counted ({len(bounded)}): " + "; ".join(bounded) + ".")
+    lines[2:2] = answer_lines(answers)
     lines += regime.findings_lines(report, metric) + order_lines(report) + horizon.finding_lines(report) + [""]
     lines += ["### Cheapest method by wall time", ""]
     lines += md.table(["scene", "kind"] + [f"{metric} error {t:.0e}" for t in costs.TARGETS], rows) + [""]

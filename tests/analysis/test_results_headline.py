@@ -3,7 +3,7 @@ feeds back and the scenes where the flat method wins named, both ways."""
 import copy
 import unittest
 
-from analysis import results
+from analysis import findings, results
 from tests.analysis import synthetic as syn
 
 
@@ -33,6 +33,23 @@ class Headline(unittest.TestCase):
         self.assertIn("- The flat method wins on: no scene where R feeds back.", text)
         self.assertIn("  - valley-sideways: the Lie method is cheaper in ", text)
         self.assertNotIn("  - plane:", text)  # homogeneous: not a scene where R feeds back
+
+
+class Answer(unittest.TestCase):
+    """The findings open with the answer, before any definition, both ways."""
+
+    def opening(self, report):
+        return findings.findings_section(report)[2]
+
+    def test_lie_loses(self):
+        text = self.opening(slowed(syn.make_report(), True, 100.0))
+        self.assertTrue(text.startswith("**Where R feeds back, keeping R on SO(3) pays on 0 of 1 scenes**"), text)
+        self.assertIn("The flat method wins on valley-sideways (", text)
+
+    def test_lie_wins(self):
+        text = self.opening(slowed(syn.make_report(), False, 100.0))
+        self.assertTrue(text.startswith("**Where R feeds back, keeping R on SO(3) pays on 1 of 1 scenes**"), text)
+        self.assertTrue(text.endswith("The flat method wins on none."), text)
 
 
 if __name__ == "__main__":
