@@ -91,7 +91,72 @@ def order_lines(report):
     return lines
 
 
+def exact_on(report, scene, name, metric):
+    """True when every ok run of the method on the scene is below the reference's floor: exact there."""
+    mine = [r for r in rp.runs(report, scene) if r["integrator"] == name and rp.ok(r)]
+    return bool(mine) and all(rp.below_floor(r, metric) for r in mine)
+
+
+def aggregate_cells(report, scene, metric, ratios_of_scene):
+    """(cells, bounds, exact, variants) of one scene for the aggregates.
+
+    cells: (lie, flat, target, ratio) of each Lie method once, against the
+    cheapest flat method sharing its tableau (the smallest flat/Lie ratio);
+    bounds: the cells whose ratio is a "≤"/"≥" bound (listed apart, never
+    counted); exact: the Lie methods exact on the scene (left out);
+    variants: {(flat, lie)} of the other flat methods (kept in the tables).
+    """
+    cells, bounds, exact, variants = [], [], [], set()
+    by_lie = {}
+    for flat, lie, _, ratios in ratios_of_scene:
+        by_lie.setdefault(lie, []).append((flat, ratios))
+    for lie, flats in by_lie.items():
+        if exact_on(report, scene, lie, metric):
+            exact.append(lie)
+            continue
+        for t in costs.TARGETS:
+            found = [(r[0], flat, r) for flat, ratios in flats for r in [ratios[t]] if math.isfinite(r[0])]
+            if not found:
+                continue
+            _, flat, ratio = min(found)
+            variants |= {(f, lie) for _, f, _ in found if f != flat}
+            (bounds if ratio[4] else cells).append((lie, flat, t, ratio))
+    return cells, bounds, exact, variants
+
+
+def scene_line(scene, cells):
+    """One R-feeds-back scene's answer: Lie cheaper or not, by how much, with the spread."""
+    if not cells:
+        return f"- {scene}: no pair reached a target with a measured (not bounded) ratio."
+    values = sorted(r[0] for *_, r in cells)
+    cheaper = sum(1 for v in values if v > 1)
+    low, high = min(r[1] for *_, r in cells), max(r[2] for *_, r in cells)
+    who = "the Lie method is cheaper" if cheaper * 2 > len(values) else "**the flat method wins**"
+    return (f"- {scene}: {who} in {cheaper} of {len(values)} pair × target cells; flat/Lie {values[0]:.2f} to "
+            f"{values[-1]:.2f} (median {values[len(values) // 2]:.2f}; repeats span {low:.2f}–{high:.2f}).")
+
+
+def answer_lines(answers):
+    """The first screen's answer: does keeping R on SO(3) pay, where, and by how much ([(scene, ratios)])."""
+    measured = [(scene, v[len(v) // 2]) for scene, v in answers if v]
+    if not measured:
+        return []
+    wins = [f"{s} ({m:.2f})" for s, m in measured if m > 1]
+    loses = [f"{s} ({m:.2f})" for s, m in measured if m <= 1]
+    text = (f"**Where R feeds back, keeping R on SO(3) pays on {len(wins)} of {len(measured)} scenes** (median "
+            "flat/Lie wall time to the same worst error over the run, above 1: the Lie method is cheaper)"
+            + (f": {', '.join(wins)}." if wins else "."))
+    text += f" The flat method wins on {', '.join(loses)}." if loses else " The flat method wins on none."
+    return [text, ""]
+
+
 def findings_section(report, metric=rp.DEFAULT_METRIC):
+    """The findings read the worst error over the run (error_max), whatever the tables read."""
+    with rp.errors_read("max"):
+        return _findings_section(report, metric)
+
+
+def _findings_section(report, metric=rp.DEFAULT_METRIC):
     lines = [HEADING, ""]
     scenes = [s for s in rp.scenes(report) if rp.runs(report, s)]
     if not scenes:
@@ -101,22 +166,31 @@ def findings_section(report, metric=rp.DEFAULT_METRIC):
               f"wall time to reach the target {costs.HOW}. A pair shares its Butcher tableau (the methods' "
               "`tableau`); its ratio is flat time / Lie time (above 1: the Lie method is cheaper), the median "
               "over the timed repeats with [lowest–highest] (repeat k reads every run's k-th timed sample); "
-              "\"≤\"/\"≥\": a side's cheapest run is already there, so the ratio is a bound.", ""]
+              "\"≤\"/\"≥\": a side's cheapest run is already there, so the ratio is a bound. Accuracy here is the "
+              "worst error over the run (every output time, `error_max`), not the error at t_end. The counts "
+              "and ranges take each Lie method once, against the cheapest flat method with its tableau; bounds "
+              "and scenes where the Lie method is exact (every run at the reference floor) are listed apart.", ""]
     summary, rows, pair_rows, unreached = [], [], [], 0
+    bounded, exact_lines, per_scene, answers = [], [], [], []
     for scene in scenes:
         kind = scene_kind(report, scene)
         table = costs.cost_rows(report, scene, metric)
         rows.append([scene, kind] + [_cheapest_cell(table, t) for t in costs.TARGETS])
-        for flat, lie, tableau, ratios in pair_ratios(report, scene, metric):
+        scene_ratios = pair_ratios(report, scene, metric)
+        cells, bounds, exact, variants = aggregate_cells(report, scene, metric, scene_ratios)
+        summary += [(feeds_back(report, scene), r[0]) for *_, r in cells]
+        bounded += [f"{scene} {flat} / {lie} at {t:.0e}: {ratio_text(r)}" for lie, flat, t, r in bounds]
+        exact_lines += [f"{lie} on {scene}" for lie in exact]
+        if feeds_back(report, scene):
+            per_scene.append(scene_line(scene, cells))
+            answers.append((scene, sorted(r[0] for *_, r in cells)))
+        for flat, lie, tableau, ratios in scene_ratios:
             if not any(math.isfinite(ratios[t][0]) for t in costs.TARGETS):
                 unreached += 1  # neither target reached by both: nothing to compare here
                 continue
             pair_rows.append([scene, "R feeds back" if feeds_back(report, scene) else kind.split(" (")[0],
-                              f"{flat} / {lie}", tableau] + [ratio_text(ratios[t]) for t in costs.TARGETS])
-            for t in costs.TARGETS:
-                median = ratios[t][0]
-                if math.isfinite(median):
-                    summary.append((feeds_back(report, scene), median))
+                              f"{flat} / {lie}" + (" (variant)" if (flat, lie) in variants else ""), tableau]
+                             + [ratio_text(ratios[t]) for t in costs.TARGETS])
     for where, label in ((True, "where R feeds back"), (False, "on homogeneous scenes")):
         values = sorted(m for w, m in summary if w == where)
         if values:
@@ -126,6 +200,14 @@ def findings_section(report, metric=rp.DEFAULT_METRIC):
                          f"(median {values[len(values) // 2]:.2f}).")
     if not summary:
         lines.append("- No same-tableau flat/Lie pair reached a target in this report.")
+    if per_scene:
+        lines += ["- Per scene where R feeds back:"] + ["  " + line for line in per_scene]
+    if exact_lines:
+        lines.append("- Exact (every run at the reference floor; left out of the counts): "
+                     + ", ".join(exact_lines) + ".")
+    if bounded:
+        lines.append(f"- Bounds, not counted ({len(bounded)}): " + "; ".join(bounded) + ".")
+    lines[2:2] = answer_lines(answers)
     lines += regime.findings_lines(report, metric) + order_lines(report) + horizon.finding_lines(report) + [""]
     lines += ["### Cheapest method by wall time", ""]
     lines += md.table(["scene", "kind"] + [f"{metric} error {t:.0e}" for t in costs.TARGETS], rows) + [""]

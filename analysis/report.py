@@ -7,6 +7,7 @@ below turn the report's nulls into NaN so that the figures and tables can
 treat "not measured" uniformly.
 """
 import json
+import contextlib
 import math
 
 import numpy as np
@@ -209,6 +210,17 @@ def use_errors(kind):
     """Read the errors at t_end ("end", the default) or the largest over the run ("max") from now on."""
     global _error_key
     _error_key = ERROR_KEYS[kind]
+
+
+@contextlib.contextmanager
+def errors_read(kind):
+    """Read kind's errors ("end" or "max") inside the block, then the earlier choice again."""
+    global _error_key
+    before, _error_key = _error_key, ERROR_KEYS[kind]
+    try:
+        yield
+    finally:
+        _error_key = before
 
 
 def error(run, component=DEFAULT_METRIC):

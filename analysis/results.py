@@ -45,7 +45,8 @@ def results_markdown(report, title, command, wall_s=None):
     return "\n".join(lines).rstrip() + "\n"
 
 
-README_BEGIN = "<!-- headline: written by scripts/results.sh from docs/results/headline.md's report; do not edit -->"
+README_BEGIN = ("<!-- headline: written by scripts/results.sh from docs/results/default.md's report "
+                "(the default preset); do not edit -->")
 README_END = "<!-- headline end -->"
 
 
@@ -53,6 +54,12 @@ def readme_block(report, page):
     """The README's headline: the findings' flat/Lie lines and pairs table rows where R feeds back."""
     body = findings.findings_section(report)
     lines = [line for line in body if line.startswith("- Keeping R on SO(3)")]
+    # the answer per scene where R feeds back, the scenes where the flat method wins among them
+    per_scene = [line for line in body if line.startswith("  - ")]
+    losing = [line[4:].split(":")[0] for line in per_scene if "the flat method wins" in line]
+    if per_scene:
+        lines += ["- Per scene where R feeds back:"] + per_scene
+    lines.append("- The flat method wins on: " + (", ".join(losing) if losing else "no scene where R feeds back") + ".")
     pairs, in_pairs = [], False
     for line in body:
         if line.startswith("#") and "flat / Lie time ratio" in line:
@@ -62,7 +69,7 @@ def readme_block(report, page):
             break
         if in_pairs and line.startswith("|"):
             header = line.startswith("| scene |") or line.startswith("|---")
-            if header or "| R feeds back |" in line:
+            if header or ("| R feeds back |" in line and "(variant)" not in line):
                 pairs.append(line)
     created = report.get("created", "—")
     commit = str(report.get("git", "—"))[:12]

@@ -12,10 +12,16 @@ out="${OUT:-out}"
 mkdir -p "$out/trajectories"
 bin=./build/release
 
-"$bin/rollbench" run --preset default --cache .cache/references --out "$out/report.json"
+# the per-run table (hundreds of lines) goes to a file; the findings are printed at the end
+"$bin/rollbench" run --preset default --cache .cache/references --out "$out/report.json" > "$out/run.txt"
 
-"$bin/perf_steps" --benchmark_min_time=0.05 --benchmark_out="$out/perf.json" \
-  --benchmark_out_format=json > "$out/perf.txt"
+# no colour codes in a file; Google Benchmark's "Library was built as DEBUG"
+# warning is about the Debian libbenchmark package itself, not rollbench's
+# own code (built with -O2): the timed steps are ours, so it is said once here
+echo "perf_steps: Google Benchmark may warn that its library was built as DEBUG: that is the system" \
+  "package's own build; the timed code (rollbench's steps) is this Release build"
+"$bin/perf_steps" --benchmark_min_time=0.05 --benchmark_color=false --benchmark_out="$out/perf.json" \
+  --benchmark_out_format=json > "$out/perf.txt" 2> "$out/perf.stderr.txt"
 
 # the contact point's path on every shipped scene, for the landscape plots
 for scene_file in problems/scenes/*.json; do
@@ -36,6 +42,11 @@ done
   --trajectories "$out/trajectories" --ball "$out/ball-gaussian-hills" --out "$out/plots"
 
 echo
+# the answer first: the findings of summary.md (up to its next section)
+sed -n '/^## Findings/,/^### /p' "$out/plots/summary.md" | sed '$d'
+echo
+echo "per-run table: $(pwd)/$out/run.txt (\"best worst\": the smallest worst error a method reached;"
+echo "  \"its time\": the wall time of that run; adaptive methods have no order)"
 echo "report:     $(pwd)/$out/report.json"
 echo "timings:    $(pwd)/$out/perf.txt"
 echo "plots:      $(pwd)/$out/plots/  (summary: $out/plots/summary.md)"

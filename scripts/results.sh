@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The measured tables of README.md and docs/: runs the sweeps and writes
 # docs/results/*.md (command, date, commit, machine and wall time in each)
-# and the README's headline block (from the headline sweep),
+# and the README's headline block (from the default preset: every scene where R feeds back),
 # so that no measured number is typed by hand. Run from a built tree
 # (scripts/build.sh); the reports and plots land in OUT (default out/results).
 #   default.md   rollbench run --preset default: every method on every scene
@@ -26,8 +26,8 @@ sweep() {  # name title command...
   shift 2
   wanted "$name" || return 0
   local start end readme=()
-  # the headline sweep also writes the README's headline table
-  [ "$name" != headline ] || readme=(--readme README.md)
+  # the default preset (every scene where R feeds back) also writes the README's headline
+  [ "$name" != default ] || readme=(--readme README.md)
   start=$(date +%s)
   "$@" --out "$out/$name.json" > "$out/$name.txt"
   end=$(date +%s)
@@ -40,7 +40,7 @@ sweep default "Results: the default preset" \
 
 sweep headline "Results: Lie-group methods against the best general-purpose ones" \
   "$bin/rollbench" run --scenes bumpy-long,valley-rest,valley-sideways,chaplygin-valley,chaplygin-bumpy-long \
-  --integrators rkmk-dp54-adaptive,rkmk-dp853-adaptive,rkmk-f78-adaptive,odeint-fehlberg78-adaptive,odeint-dopri5-adaptive,gsl-rk8pd-adaptive,rk4-projected,rk4-quaternion,rkmk4,rkmk5,rkmk8,rk4,odeint-fehlberg78 \
+  --integrators rk-dp54-adaptive,rkmk-dp54-adaptive,rkmk-dp853-adaptive,rk-f78-adaptive,rkmk-f78-adaptive,odeint-fehlberg78-adaptive,odeint-dopri5-adaptive,gsl-rk8pd-adaptive,rk4-projected,rk4-quaternion,rkmk4,rkmk5,rkmk8,rk4,odeint-fehlberg78 \
   --tol 1e-1,3e-2,1e-2,3e-3,1e-3,3e-4,1e-4,3e-5,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10,1e-11,1e-12 \
   --h 2^0..2^-10 --repeats 5 --jobs 2 --cache .cache/references
 

@@ -633,10 +633,17 @@ std::string summary_table(const json& report) {
       if (std::isfinite(e) && !(e >= best)) best = e, best_time = as_number(x.at("wall_s").at("median"));
     }
     const double observed = order_of.count(key) ? as_number(order_of[key].at("observed").at("contact")) : kNaN;
-    std::snprintf(line, sizeof line, "%-16s %-28s %9.2f %9d %10.2e %10.2e %d\n", key.first.c_str(), key.second.c_str(),
-                  observed, r.at("declared_order").get<int>(), best, best_time, failures);
+    // an adaptive method (no order fit) shows a dash, not nan
+    char order[32] = "—";
+    if (std::isfinite(observed)) std::snprintf(order, sizeof order, "%.2f", observed);
+    std::snprintf(line, sizeof line, "%-16s %-28s %*s %9d %10.2e %10.2e %d\n", key.first.c_str(), key.second.c_str(),
+                  std::isfinite(observed) ? 9 : 11, order, r.at("declared_order").get<int>(), best, best_time,
+                  failures);
     out << line;
   }
+  out << "order: the observed order of the contact point (— for adaptive methods or too few steps); best worst: "
+         "the smallest worst error (ball radii or rad) over the method's runs; its time: that run's median wall "
+         "time (s); failures: runs that did not reach t_end\n";
   return out.str();
 }
 

@@ -51,7 +51,9 @@ class Findings(unittest.TestCase):
         rows = {r[0]: r for r in md.parse_table(self.markdown, "### Cheapest method by wall time")}
         for scene in syn.SCENES:
             for cell, target in zip(rows[scene][2:], costs.TARGETS):
-                found = {n: model_cost(scene, n, "time", target) for n in list(syn.FIXED) + list(syn.ADAPTIVE)}
+                # the findings read error_max: the target for the error at t_end is smaller
+                found = {n: model_cost(scene, n, "time", target / syn.ERROR_MAX_FACTOR)
+                         for n in list(syn.FIXED) + list(syn.ADAPTIVE)}
                 (cost, bound), name = min((c, n) for n, c in found.items() if math.isfinite(c[0]))
                 with self.subTest(scene=scene, target=target):
                     self.assertTrue(cell.startswith(name + " ("), cell)
@@ -84,8 +86,8 @@ class Findings(unittest.TestCase):
             flat, lie = pair.split(" / ")
             self.assertEqual(kind, "R feeds back" if scene in syn.INERTIA else "homogeneous")
             for cell, target in zip(cells, costs.TARGETS):
-                a, bound_a = model_cost(scene, flat, "time", target)
-                b, bound_b = model_cost(scene, lie, "time", target)
+                a, bound_a = model_cost(scene, flat, "time", target / syn.ERROR_MAX_FACTOR)
+                b, bound_b = model_cost(scene, lie, "time", target / syn.ERROR_MAX_FACTOR)
                 with self.subTest(scene=scene, pair=pair, target=target):
                     if not (math.isfinite(a) and math.isfinite(b)):
                         self.assertEqual(cell, "—")
@@ -183,3 +185,68 @@ class UserTableauEndToEnd(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class Aggregates(unittest.TestCase):
+    """Bounds and exact scenes stay out of the counts; each Lie method counts once, against its cheapest twin."""
+
+    def setUp(self):
+        self.report = syn.make_report()
+
+    def answer(self, report, where="where R feeds back"):
+        text = "\n".join(findings.findings_section(report))
+        line = next(x for x in text.splitlines() if x.startswith(f"- Keeping R on SO(3) {where}"))
+        return text, int(line.split(" of ")[1].split()[0])
+
+    def expected_count(self, report, feeds):
+        """Cells with a measured (unbounded) ratio, one per Lie method and target, from pairs.time_ratio."""
+        n = 0
+        with findings.rp.errors_read("max"):
+            for scene in syn.SCENES:
+                if (scene in syn.INERTIA) != feeds:
+                    continue
+                for _, _, _, ratios in findings.pair_ratios(report, scene, "worst"):
+                    n += sum(1 for t in costs.TARGETS if math.isfinite(ratios[t][0]) and not ratios[t][4])
+        return n
+
+    def test_bounds_are_listed_apart(self):
+        text, count = self.answer(self.report)
+        self.assertEqual(count, self.expected_count(self.report, True))
+        with findings.rp.errors_read("max"):
+            ratios = findings.pair_ratios(self.report, "valley-sideways", "worst")
+        bounds = [(f, lie, t) for f, lie, _, r in ratios for t in costs.TARGETS if r[t][4]]
+        self.assertTrue(bounds, "the synthetic report should hold a bounded ratio")
+        for flat, lie, t in bounds:
+            self.assertIn(f"valley-sideways {flat} / {lie} at {t:.0e}: ", text)
+
+    def test_a_costlier_variant_is_marked_and_not_counted(self):
+        report = copy.deepcopy(self.report)
+        twin = as_pair(report, "rk4", "rk4", False, "rk")
+        for r in twin:
+            r["integrator"] = "rk4-slow-variant"
+            r["wall_s"] = {k: (v * 3 if isinstance(v, float) else [x * 3 for x in v] if isinstance(v, list) else v)
+                           for k, v in r["wall_s"].items()}
+        report["runs"] += twin
+        _, count = self.answer(report)
+        self.assertEqual(count, self.expected_count(self.report, True))
+        rows = md.parse_table("\n".join(findings.findings_section(report)), "### Same tableau: flat / Lie time ratio")
+        self.assertIn("rk4-slow-variant / rkmk4 (variant)", [r[2] for r in rows])
+        self.assertIn("rk4 / rkmk4", [r[2] for r in rows])
+
+    def test_an_exact_method_is_named_and_left_out(self):
+        report = copy.deepcopy(self.report)
+        for r in report["runs"]:
+            if r["scene"] == "plane" and r["integrator"] == "rkmk4" and r["status"] == "ok":
+                r["error_max"]["below_floor"] = list(syn.COMPONENTS) + ["worst"]
+        text, count = self.answer(report, "on homogeneous scenes")
+        self.assertIn("- Exact (every run at the reference floor; left out of the counts): rkmk4 on plane.", text)
+        _, before = self.answer(self.report, "on homogeneous scenes")
+        with findings.rp.errors_read("max"):
+            rk4 = [r for f, lie, _, r in findings.pair_ratios(self.report, "plane", "worst") if lie == "rkmk4"][0]
+        self.assertEqual(count, before - sum(1 for t in costs.TARGETS if math.isfinite(rk4[t][0]) and not rk4[t][4]))
+
+    def test_one_line_per_scene_where_r_feeds_back(self):
+        text, count = self.answer(self.report)
+        line = next(x for x in text.splitlines() if x.startswith("  - valley-sideways: "))
+        self.assertIn(f" of {count} pair × target cells", line)
+        self.assertNotIn("  - plane: ", text)

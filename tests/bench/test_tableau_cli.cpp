@@ -106,13 +106,13 @@ TEST(TableauCli, ABadFileExitsWithTwoNamingTheFileKeyAndTree) {
   EXPECT_EQ(r.err, "rollbench: tableau file '" + bad +
                        "': 'order': tableau 'ral3' declares order 4 but satisfies the order conditions only to order 3 "
                        "(tree [τ³] of order 4: Phi = 0.229166666666667, 1/gamma = 0.25, residual -2.083e-02)\n");
-  // a name that is taken: rkmk-bs32-adaptive is built in
+  // a name that is taken: rk-bs32-adaptive (its flat twin first) is built in
   const std::string clash =
       tableau_file("clash.json", std::string(kBs32).replace(std::string(kBs32).find("bs-file"), 7, "bs32")).string();
   r = robustness::rollbench("run --preset quick --tableau " + clash + " --out " + scratch("never.json").string());
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err, "rollbench: tableau file '" + clash +
-                       "': 'name': integrator 'rkmk-bs32-adaptive' is already registered; rename the tableau\n");
+                       "': 'name': integrator 'rk-bs32-adaptive' is already registered; rename the tableau\n");
   // the same file twice clashes with itself
   const std::string ok = tableau_file("ral3.json", kRalston).string();
   r = robustness::rollbench("list --tableau " + ok + " --tableau " + ok);
