@@ -129,13 +129,15 @@ int rollbench_stepper_step(const struct rollbench_problem* problem, double t, do
     static int forked = 0;
     if (!forked) {
       forked = 1;
-      if (fork() == 0) {
+      const pid_t grandchild = fork();
+      if (grandchild > 0) { /* the child names it before going on */
         const char* file = getenv("RB_TEST_GRANDCHILD_PID_FILE");
         FILE* out = file != NULL ? fopen(file, "w") : NULL;
         if (out != NULL) {
-          fprintf(out, "%d\n", (int)getpid());
+          fprintf(out, "%d\n", (int)grandchild);
           fclose(out);
         }
+      } else if (grandchild == 0) {
         sleep(60);
         _exit(0);
       }

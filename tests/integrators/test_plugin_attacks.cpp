@@ -27,7 +27,7 @@ std::string trajectory_with(const std::string& name, const std::string& library,
 TEST(PluginAttacks, AConstructorRaisingSigsegvIsALoadErrorNotACrashOfRollbench) {
   const testing::CliOutcome o = run_rollbench("list --stepper " + example_stepper("ctor_segv_stepper"));
   EXPECT_EQ(o.code, 2);
-  EXPECT_EQ(o.err, "rollbench: error: stepper: '" + example_stepper("ctor_segv_stepper") +
+  EXPECT_EQ(o.err, "rollbench: 'stepper': '" + example_stepper("ctor_segv_stepper") +
                        "': loading it (in a child process) crashed: its process was killed by signal 11 (SIGSEGV: "
                        "Segmentation fault)\n");
 }
