@@ -12,12 +12,21 @@
  *   RB_VARIANT_CRASH       dereferences a null pointer (SIGSEGV) from t >= 0.5
  *   RB_VARIANT_ABORT       calls abort() (SIGABRT) from t >= 0.5
  *   RB_VARIANT_HANG        spins forever from t >= 0.5
+ *   RB_VARIANT_CTOR_SEGV   raises SIGSEGV in its constructor (at dlopen)
+ *   RB_VARIANT_INFO_NULL   rollbench_stepper_info() returns NULL from its second call
+ *   RB_VARIANT_FORKS       forks a grandchild that holds every open descriptor for 60 s
+ *                          and writes its pid to $RB_TEST_GRANDCHILD_PID_FILE
+ *   RB_VARIANT_FLOOD       writes 400 MiB to every descriptor from 3 to 63 at t >= 0.5
+ *   RB_VARIANT_EXIT        calls exit(3) at t >= 0.5
  *   RB_VARIANT_OFF_GROUP   a Lie-view exponential Euler step that, from
  *                          t >= 0.5, scales R by 1.1 (R^T R = 1.21 I)
  */
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
 #include "integrators/plugin/rollbench_stepper.h"
 
@@ -50,7 +59,18 @@ unsigned rollbench_stepper_abi_version(void) {
 #endif
 }
 
+#ifdef RB_VARIANT_CTOR_SEGV
+__attribute__((constructor)) static void crash_at_load(void) { raise(SIGSEGV); }
+#endif
+
+#ifdef RB_VARIANT_INFO_NULL
+const struct rollbench_stepper_info* rollbench_stepper_info(void) {
+  static int calls = 0;
+  return calls++ == 0 ? &info : NULL;
+}
+#else
 const struct rollbench_stepper_info* rollbench_stepper_info(void) { return &info; }
+#endif
 
 #ifdef RB_VARIANT_OFF_GROUP
 /* examples/lie_euler_stepper.c, spoiled from t >= 0.5 */
@@ -100,6 +120,38 @@ int rollbench_stepper_step(const struct rollbench_problem* problem, double t, do
 #endif
 #ifdef RB_VARIANT_ABORT
   if (t >= 0.5) abort();
+#endif
+#ifdef RB_VARIANT_EXIT
+  if (t >= 0.5) exit(3);
+#endif
+#ifdef RB_VARIANT_FORKS
+  {
+    static int forked = 0;
+    if (!forked) {
+      forked = 1;
+      const pid_t grandchild = fork();
+      if (grandchild > 0) { /* the child names it before going on */
+        const char* file = getenv("RB_TEST_GRANDCHILD_PID_FILE");
+        FILE* out = file != NULL ? fopen(file, "w") : NULL;
+        if (out != NULL) {
+          fprintf(out, "%d\n", (int)grandchild);
+          fclose(out);
+        }
+      } else if (grandchild == 0) {
+        sleep(60);
+        _exit(0);
+      }
+    }
+  }
+#endif
+#ifdef RB_VARIANT_FLOOD
+  if (t >= 0.5) {
+    static char block[1 << 20];
+    memset(block, 'x', sizeof block);
+    for (int fd = 3; fd < 64; ++fd)
+      for (int i = 0; i < 400; ++i)
+        if (write(fd, block, sizeof block) < 0) break;
+  }
 #endif
 #ifdef RB_VARIANT_HANG
   if (t >= 0.5) {

@@ -2,7 +2,9 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,6 +15,7 @@
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "problems/input_error.hpp"
@@ -138,20 +141,35 @@ std::string child_answer(const std::function<RunResult()>& body, bool warm_up) {
   return w.bytes;
 }
 
-[[noreturn]] void run_child(const std::function<RunResult()>& body, int out, bool warm_up) {
+// Where the child leaves if the plug-in calls exit(): registered after
+// fork, so it runs before every handler the parent registered (atexit runs
+// them in reverse order) and ends the child with a code the parent reads
+// as "no whole result".
+constexpr int kExitCalledCode = 113;
+[[noreturn]] void leave_on_exit() { ::_exit(kExitCalledCode); }
+
+[[noreturn]] void run_child(const std::function<std::string()>& answer_of, int out) {
+  ::setpgid(0, 0);  // its own process group: the parent kills it whole
+  // dies with the parent (a rollbench killed by a signal leaves no child)
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
   // nothing but the answer's pipe stays open: a sibling child must not
   // hold another run's pipe (its parent would wait for that child's end)
   if (out > 3) ::close_range(3, static_cast<unsigned>(out) - 1, 0);
   ::close_range(static_cast<unsigned>(out) + 1, ~0U, 0);
+  std::atexit([] { leave_on_exit(); });
+  std::at_quick_exit([] { leave_on_exit(); });
   const rlimit no_core{0, 0};
   ::setrlimit(RLIMIT_CORE, &no_core);  // a crash is a status, not a core file
   // the default action for the signals of a crash, whatever handler the
   // parent has (a sanitizer's turns SIGSEGV into exit code 1): the parent
-  // names the signal
-  for (const int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTRAP, SIGSYS}) std::signal(signal, SIG_DFL);
+  // names the signal; and for the signals that end a process, so that the
+  // parent's handlers (removing its temporaries) never run in the child
+  for (const int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGTRAP, SIGSYS, SIGINT, SIGTERM, SIGHUP, SIGQUIT,
+                           SIGPIPE, SIGUSR1, SIGUSR2, SIGALRM})
+    std::signal(signal, SIG_DFL);
   int code = 0;
   try {
-    const std::string answer = child_answer(body, warm_up);
+    const std::string answer = answer_of();
     for (std::size_t written = 0; written < answer.size();) {
       const ssize_t n = ::write(out, answer.data() + written, answer.size() - written);
       if (n < 0 && errno == EINTR) continue;
@@ -182,8 +200,8 @@ std::string seconds_text(double seconds) {
 
 }  // namespace
 
-RunResult run_isolated(const std::function<RunResult()>& body, const std::string& who, double wall_limit_s,
-                       const FlatState& start, bool warm_up) {
+ChildOutcome run_in_child(const std::function<std::string()>& answer_of, const std::string& who, double wall_limit_s,
+                          std::size_t max_answer_bytes) {
   int pipe_ends[2];
   if (::pipe2(pipe_ends, O_CLOEXEC) != 0)
     throw std::runtime_error(who + ": cannot make a pipe for an isolated run: " + std::strerror(errno));
@@ -195,51 +213,96 @@ RunResult run_isolated(const std::function<RunResult()>& body, const std::string
     ::close(pipe_ends[1]);
     throw std::runtime_error(who + ": cannot fork an isolated run: " + std::strerror(error));
   }
-  if (pid == 0) run_child(body, pipe_ends[1], warm_up);
+  if (pid == 0) run_child(answer_of, pipe_ends[1]);
   ::close(pipe_ends[1]);
+  ::setpgid(pid, pid);  // also here: the group exists before the parent may kill it
+  ::fcntl(pipe_ends[0], F_SETFL, O_NONBLOCK);
+  // the child's own end, not the pipe's: a grandchild may hold the pipe open
+  const int child_fd = static_cast<int>(::syscall(SYS_pidfd_open, pid, 0));
 
   using clock = std::chrono::steady_clock;
   const auto deadline = clock::now() + std::chrono::duration<double>(wall_limit_s);
-  std::string answer;
-  bool timed_out = false;
+  ChildOutcome outcome;
+  bool pipe_open = true, exited = false;
   char buffer[1 << 16];
-  for (;;) {
+  auto child_exited = [&] {
+    siginfo_t info{};
+    return ::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid;
+  };
+  // reads what the pipe holds now; false once the pipe ended or the answer is too long
+  auto drain = [&] {
+    for (;;) {
+      const ssize_t n = ::read(pipe_ends[0], buffer, sizeof buffer);
+      if (n > 0) {
+        if (outcome.answer.size() + static_cast<std::size_t>(n) > max_answer_bytes) {
+          outcome.too_long = true;
+          return false;
+        }
+        outcome.answer.append(buffer, static_cast<std::size_t>(n));
+      } else if (n == 0) {
+        return false;
+      } else if (errno != EINTR) {
+        return errno == EAGAIN || errno == EWOULDBLOCK;
+      }
+    }
+  };
+  while (!exited && !outcome.too_long) {
     const double left = std::chrono::duration<double>(deadline - clock::now()).count();
     if (left <= 0.0) {
-      timed_out = true;
+      outcome.timed_out = true;
       break;
     }
-    pollfd ready{pipe_ends[0], POLLIN, 0};
-    const int polled = ::poll(&ready, 1, static_cast<int>(std::min(left * 1000.0 + 1.0, double(INT_MAX))));
-    if (polled <= 0) continue;  // EINTR or the time is up: the loop looks at the clock
-    const ssize_t n = ::read(pipe_ends[0], buffer, sizeof buffer);
-    if (n > 0) {
-      answer.append(buffer, static_cast<std::size_t>(n));
-    } else if (n == 0 || errno != EINTR) {
-      break;  // the child closed its end: it ended, one way or another
-    }
+    // without a pidfd (an old kernel) the loop looks at the child every 5 ms
+    const double wait_ms = child_fd >= 0 ? left * 1000.0 + 1.0 : std::min(left * 1000.0 + 1.0, 5.0);
+    pollfd ready[2] = {{pipe_open ? pipe_ends[0] : -1, POLLIN, 0}, {child_fd, POLLIN, 0}};
+    (void)::poll(ready, 2, static_cast<int>(std::min(wait_ms, double(INT_MAX))));
+    if (pipe_open && (ready[0].revents & (POLLIN | POLLHUP | POLLERR)) != 0) pipe_open = drain();
+    if (child_fd < 0 || (ready[1].revents & POLLIN) != 0) exited = child_exited();
   }
+  if (exited && pipe_open && !outcome.too_long) (void)drain();  // what it wrote before its end
+  if (child_fd >= 0) ::close(child_fd);
   ::close(pipe_ends[0]);
-  if (timed_out) ::kill(pid, SIGKILL);  // not reaped yet: the pid is still the child's
-  int wait_status = 0;
-  while (::waitpid(pid, &wait_status, 0) < 0 && errno == EINTR) {
+  // the whole group, whatever its state: a grandchild must not outlive the run
+  // (pid is not reaped yet, so the group's id is still this child's)
+  ::kill(-pid, SIGKILL);
+  ::kill(pid, SIGKILL);
+  while (::waitpid(pid, &outcome.wait_status, 0) < 0 && errno == EINTR) {
   }
+  return outcome;
+}
+
+std::string child_failure_text(const ChildOutcome& outcome, double wall_limit_s, std::size_t max_answer_bytes) {
+  if (outcome.timed_out)
+    return "was still running after the wall-clock limit of " + seconds_text(wall_limit_s) +
+           " s (--stepper-timeout) and was killed";
+  if (outcome.too_long)
+    return "crashed: its process sent more than " + std::to_string(max_answer_bytes) +
+           " bytes (the limit of an answer) and was killed";
+  if (WIFSIGNALED(outcome.wait_status))
+    return "crashed: its process was killed by " + signal_text(WTERMSIG(outcome.wait_status));
+  const int code = WIFEXITED(outcome.wait_status) ? WEXITSTATUS(outcome.wait_status) : -1;
+  if (code == kExitCalledCode) return "crashed: it called exit() in its process";
+  return "crashed: its process exited with code " + std::to_string(code) + " without returning a whole result";
+}
+
+RunResult run_isolated(const std::function<RunResult()>& body, const std::string& who, double wall_limit_s,
+                       const FlatState& start, bool warm_up) {
+  const ChildOutcome outcome =
+      run_in_child([&] { return child_answer(body, warm_up); }, who, wall_limit_s, kMaxIsolatedAnswerBytes);
 
   RunResult run;
   run.final_state = start;
-  if (timed_out) {
-    run.status = Status::timeout;
-    run.message = who + " was still running after the wall-clock limit of " + seconds_text(wall_limit_s) +
-                  " s (--stepper-timeout) and was killed; its state and cost are lost";
+  auto lost = [&](Status status, const std::string& text) {
+    run.status = status;
+    run.message = who + " " + text + "; its state and cost are lost";
     return run;
-  }
-  if (WIFSIGNALED(wait_status)) {
-    run.status = Status::crashed;
-    run.message = who + " crashed: its process was killed by " + signal_text(WTERMSIG(wait_status)) +
-                  "; its state and cost are lost";
-    return run;
-  }
-  Reader in(answer);
+  };
+  const bool exited_clean = WIFEXITED(outcome.wait_status) && WEXITSTATUS(outcome.wait_status) == 0;
+  if (outcome.timed_out)
+    return lost(Status::timeout, child_failure_text(outcome, wall_limit_s, kMaxIsolatedAnswerBytes));
+  if (outcome.too_long || !exited_clean)
+    return lost(Status::crashed, child_failure_text(outcome, wall_limit_s, kMaxIsolatedAnswerBytes));
+  Reader in(outcome.answer);
   std::uint32_t magic = 0, end_magic = 0;
   Kind kind{};
   bool whole = in.get(magic) && magic == kMagic && in.get(kind);
@@ -255,13 +318,7 @@ RunResult run_isolated(const std::function<RunResult()>& body, const std::string
     }
   }
   whole = whole && in.get(end_magic) && end_magic == kMagic && in.at_end();
-  const int code = WIFEXITED(wait_status) ? WEXITSTATUS(wait_status) : -1;
-  if (!whole || code != 0) {
-    run.status = Status::crashed;
-    run.message = who + " crashed: its process exited with code " + std::to_string(code) +
-                  " without returning a whole result; its state and cost are lost";
-    return run;
-  }
+  if (!whole) return lost(Status::crashed, "crashed: its process exited with code 0 without returning a whole result");
   if (kind == Kind::input_error) throw InputError(message, key, column);
   if (kind == Kind::exception) throw std::runtime_error(message);  // as it would have been in-process
   return got;

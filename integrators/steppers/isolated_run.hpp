@@ -6,6 +6,15 @@
 // status "crashed", one still running at the limit is killed by its pid
 // and the status "timeout"; the parent process and the rest of a sweep go on.
 //
+// The child is its own process group (the parent kills the whole group
+// when the child ends and on timeout: a grandchild does not outlive the
+// run), dies with the parent (PR_SET_PDEATHSIG), and its end is the
+// child's own exit (a pidfd), not the pipe's: a grandchild holding the
+// pipe open does not turn a finished run into a timeout. The parent reads
+// at most kMaxIsolatedAnswerBytes; a child sending more is killed and its
+// run "crashed". A child calling exit() leaves by _exit before any
+// handler of the parent runs (atexit order) and is "crashed" too.
+//
 // What is timed: the child measures its own integration (steady clock,
 // right around body()) and returns it as RunResult::solve_seconds, so that
 // fork, pipe and result transfer are not charged to the method; with
@@ -21,6 +30,7 @@
 // buffers. The parent flushes stdout and stderr before fork so nothing is
 // written twice. Forking from a threaded sweep is safe for this body: it
 // only computes and allocates (glibc resets malloc's locks in the child).
+#include <cstddef>
 #include <functional>
 #include <string>
 
@@ -32,6 +42,29 @@ namespace rb {
 // any run of the shipped presets (the slowest plug-in run of the full
 // preset takes seconds), short enough that a hanging plug-in costs minutes.
 inline constexpr double kDefaultIsolatedWallLimit = 300.0;
+
+// The most bytes the parent reads from one child (128 MiB: a result of
+// about a million output points of 14 doubles).
+inline constexpr std::size_t kMaxIsolatedAnswerBytes = std::size_t{128} << 20;
+
+// How a child ended: its wait status, whether it was killed at the limit
+// or for sending more than the limit, and the bytes it sent.
+struct ChildOutcome {
+  int wait_status = 0;
+  bool timed_out = false;
+  bool too_long = false;
+  std::string answer;
+};
+
+// Runs answer_of in a child process (as described above) and returns what
+// it sent; throws std::runtime_error naming who when no pipe or fork.
+ChildOutcome run_in_child(const std::function<std::string()>& answer_of, const std::string& who, double wall_limit_s,
+                          std::size_t max_answer_bytes);
+
+// Why a child that did not exit 0 (or was killed) gave no answer, as a
+// sentence after the name: "crashed: its process was killed by signal 11
+// (SIGSEGV: Segmentation fault)", "was still running after ...".
+std::string child_failure_text(const ChildOutcome& outcome, double wall_limit_s, std::size_t max_answer_bytes);
 
 // Runs body in a child process and returns its result; who names the
 // method in the messages ("stepper 'x'"), start is the state a crashed

@@ -1,10 +1,15 @@
 #include "integrators/steppers/plugin_stepper.hpp"
 
 #include <dlfcn.h>
+#include <sys/wait.h>
 
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <limits>
+#include <vector>
 
 #include "integrators/driver.hpp"
 #include "problems/input_error.hpp"
@@ -47,10 +52,57 @@ void so3_dexpinv_callback(void* c, const double* u, const double* w, double* out
   ++context.cost->dexpinv_evals;
 }
 
+// The library's three symbols, after its ABI version was checked.
+struct OpenedLibrary {
+  void* handle;
+  InfoFn info;
+  StepFn step;
+};
+
+// dlopen of absolute (path names it in the messages), its symbols and its
+// ABI version; throws InputError under key "stepper". This runs the
+// library's constructors: in a child process unless isolation is none.
+OpenedLibrary open_library(const std::string& path, const std::string& absolute) {
+  void* library = dlopen(absolute.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (library == nullptr) {
+    const char* why = dlerror();
+    throw InputError("'" + path + "' is not a shared library that can be loaded (" +
+                         (why != nullptr ? std::string(why) : std::string("dlopen failed")) + ")",
+                     "stepper");
+  }
+  try {
+    auto symbol = [&](const char* name) {
+      void* address = dlsym(library, name);
+      if (address == nullptr)
+        throw InputError("'" + path + "' does not export '" + name + "' (see integrators/plugin/rollbench_stepper.h)",
+                         "stepper");
+      return address;
+    };
+    const auto abi_version = reinterpret_cast<AbiVersionFn>(symbol("rollbench_stepper_abi_version"));
+    const auto info = reinterpret_cast<InfoFn>(symbol("rollbench_stepper_info"));
+    const auto step = reinterpret_cast<StepFn>(symbol("rollbench_stepper_step"));
+    if (const unsigned version = abi_version(); version != ROLLBENCH_STEPPER_ABI_VERSION)
+      throw InputError("'" + path + "': rollbench_stepper_abi_version() is " + std::to_string(version) +
+                           ", this rollbench takes " + std::to_string(ROLLBENCH_STEPPER_ABI_VERSION) +
+                           " (rebuild it against integrators/plugin/rollbench_stepper.h)",
+                       "stepper");
+    return {library, info, step};
+  } catch (...) {
+    dlclose(library);  // nothing of it was registered
+    throw;
+  }
+}
+
 class PluginStepper final : public Integrator {
  public:
-  PluginStepper(MethodInfo facts, StepFn step, bool lie_view, PluginIsolation isolation)
-      : Integrator(std::move(facts)), step_(step), lie_view_(lie_view), isolation_(isolation) {}
+  // step: the library's step in this process (isolation none), or null
+  // and library the file each child opens again (isolation process)
+  PluginStepper(MethodInfo facts, StepFn step, std::string library, bool lie_view, PluginIsolation isolation)
+      : Integrator(std::move(facts)),
+        step_(step),
+        library_(std::move(library)),
+        lie_view_(lie_view),
+        isolation_(isolation) {}
 
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
     if (isolation_.mode == PluginIsolation::Mode::none) return integrate_here(problem, options);
@@ -61,13 +113,15 @@ class PluginStepper final : public Integrator {
 
  private:
   RunResult integrate_here(const Problem& problem, const RunOptions& options) const {
+    // in a child: the library is opened here, never in the parent
+    const StepFn step_fn = step_ != nullptr ? step_ : open_library(library_, library_).step;
     PluginCallContext context{&problem, nullptr};
     const rollbench_problem callbacks = plugin_callbacks(context);
     char message[512];
     auto step = [&](const FlatState& y, FlatState& next, double t, double h, Cost& cost) {
       context.cost = &cost;
       message[0] = '\0';
-      const int code = step_(&callbacks, t, h, y.data(), next.data(), message, sizeof message);
+      const int code = step_fn(&callbacks, t, h, y.data(), next.data(), message, sizeof message);
       if (code != 0) [[unlikely]] {
         message[sizeof message - 1] = '\0';
         char at[48];
@@ -95,6 +149,7 @@ class PluginStepper final : public Integrator {
   }
 
   StepFn step_;
+  std::string library_;
   bool lie_view_;
   PluginIsolation isolation_;
 };
@@ -127,6 +182,48 @@ MethodInfo checked_facts(const struct rollbench_stepper_info* info, const std::s
   return facts;
 }
 
+// The probe's answer: fields, each an 8-byte length and its bytes.
+constexpr std::size_t kMaxProbeBytes = std::size_t{1} << 16;
+
+std::string fields_bytes(const std::vector<std::string>& fields) {
+  std::string bytes;
+  for (const std::string& field : fields) {
+    const std::uint64_t size = field.size();
+    bytes.append(reinterpret_cast<const char*>(&size), sizeof size);
+    bytes.append(field);
+  }
+  return bytes;
+}
+
+bool read_fields(const std::string& bytes, std::vector<std::string>& fields) {
+  for (std::size_t at = 0; at < bytes.size();) {
+    std::uint64_t size = 0;
+    if (bytes.size() - at < sizeof size) return false;
+    std::memcpy(&size, bytes.data() + at, sizeof size);
+    at += sizeof size;
+    if (bytes.size() - at < size) return false;
+    fields.emplace_back(bytes, at, size);
+    at += size;
+  }
+  return true;
+}
+
+// In the child: open the library, call rollbench_stepper_info() once and
+// send its facts ("info", name, family, description, order, view), "null",
+// or ("error", the InputError's message).
+std::string probe_answer(const std::string& path, const std::string& absolute) {
+  try {
+    const OpenedLibrary library = open_library(path, absolute);
+    const struct rollbench_stepper_info* info = library.info();
+    if (info == nullptr) return fields_bytes({"null"});
+    auto text = [](const char* s) { return s != nullptr ? std::string(s, ::strnlen(s, 4096)) : std::string(); };
+    return fields_bytes({"info", text(info->name), text(info->family), text(info->description),
+                         std::to_string(info->order), std::to_string(info->view)});
+  } catch (const InputError& e) {
+    return fields_bytes({"error", e.message()});
+  }
+}
+
 }  // namespace
 
 rollbench_problem plugin_callbacks(PluginCallContext& context) {
@@ -144,35 +241,43 @@ std::unique_ptr<Integrator> load_plugin_stepper(const std::string& path, const P
                      "stepper");
   // an absolute path: dlopen would search the library path for a bare name
   const std::string absolute = fs::absolute(path, ec).string();
-  void* library = dlopen(absolute.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (library == nullptr) {
-    const char* why = dlerror();
-    throw InputError("'" + path + "' is not a shared library that can be loaded (" +
-                         (why != nullptr ? std::string(why) : std::string("dlopen failed")) + ")",
+  const std::string where = "'" + path + "': rollbench_stepper_info()";
+  if (isolation.mode == PluginIsolation::Mode::none) {
+    const OpenedLibrary library = open_library(path, absolute);
+    try {
+      const struct rollbench_stepper_info* info = library.info();  // once: a second call may differ
+      MethodInfo facts = checked_facts(info, where, path);
+      return std::make_unique<PluginStepper>(std::move(facts), library.step, std::string(),
+                                             info->view == ROLLBENCH_VIEW_LIE, isolation);
+    } catch (...) {
+      dlclose(library.handle);  // nothing of it was registered
+      throw;
+    }
+  }
+  // isolation process: opened, checked and asked for its facts in a child
+  const ChildOutcome outcome = run_in_child([&] { return probe_answer(path, absolute); }, "stepper '" + path + "'",
+                                            isolation.wall_limit_s, kMaxProbeBytes);
+  std::vector<std::string> fields;
+  const bool exited_clean = !outcome.timed_out && !outcome.too_long && WIFEXITED(outcome.wait_status) &&
+                            WEXITSTATUS(outcome.wait_status) == 0;
+  if (!exited_clean || !read_fields(outcome.answer, fields) || fields.empty())
+    throw InputError("'" + path + "': loading it (in a child process) " +
+                         (exited_clean ? std::string("returned no whole answer")
+                                       : child_failure_text(outcome, isolation.wall_limit_s, kMaxProbeBytes)),
                      "stepper");
-  }
-  try {
-    auto symbol = [&](const char* name) {
-      void* address = dlsym(library, name);
-      if (address == nullptr)
-        throw InputError("'" + path + "' does not export '" + name + "' (see integrators/plugin/rollbench_stepper.h)",
-                         "stepper");
-      return address;
-    };
-    const auto abi_version = reinterpret_cast<AbiVersionFn>(symbol("rollbench_stepper_abi_version"));
-    const auto info = reinterpret_cast<InfoFn>(symbol("rollbench_stepper_info"));
-    const auto step = reinterpret_cast<StepFn>(symbol("rollbench_stepper_step"));
-    if (const unsigned version = abi_version(); version != ROLLBENCH_STEPPER_ABI_VERSION)
-      throw InputError("'" + path + "': rollbench_stepper_abi_version() is " + std::to_string(version) +
-                           ", this rollbench takes " + std::to_string(ROLLBENCH_STEPPER_ABI_VERSION) +
-                           " (rebuild it against integrators/plugin/rollbench_stepper.h)",
-                       "stepper");
-    MethodInfo facts = checked_facts(info(), "'" + path + "': rollbench_stepper_info()", path);
-    return std::make_unique<PluginStepper>(std::move(facts), step, info()->view == ROLLBENCH_VIEW_LIE, isolation);
-  } catch (...) {
-    dlclose(library);  // nothing of it was registered
-    throw;
-  }
+  if (fields[0] == "error" && fields.size() == 2) throw InputError(valid_utf8(fields[1]), "stepper");
+  if (fields[0] == "null" && fields.size() == 1) (void)checked_facts(nullptr, where, path);
+  if (fields[0] != "info" || fields.size() != 6)
+    throw InputError("'" + path + "': loading it (in a child process) returned no whole answer", "stepper");
+  struct rollbench_stepper_info info {};
+  info.name = fields[1].c_str();
+  info.family = fields[2].c_str();
+  info.description = fields[3].c_str();
+  info.order = std::atoi(fields[4].c_str());
+  info.view = std::atoi(fields[5].c_str());
+  MethodInfo facts = checked_facts(&info, where, path);
+  return std::make_unique<PluginStepper>(std::move(facts), nullptr, absolute, info.view == ROLLBENCH_VIEW_LIE,
+                                         isolation);
 }
 
 }  // namespace rb

@@ -1,0 +1,79 @@
+// The five hostile plug-ins of issue 32 (examples/test_steppers.c): each
+// lives in its child process entirely (integrators/steppers/isolated_run.hpp)
+// and none of them takes rollbench down, hangs it, floods its memory, runs
+// its atexit handlers or leaves a process behind.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <stdlib.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "tests/cli_run.hpp"
+#include "tests/example_steppers.hpp"
+
+namespace rb {
+namespace {
+
+using testing::cli_temp_file;
+using testing::example_stepper;
+using testing::run_rollbench;
+
+std::string trajectory_with(const std::string& name, const std::string& library, const std::string& out) {
+  return "trajectory valley-sideways --integrator " + name + " --h 0.0625 --stepper-timeout 20 --out " + out +
+         " --stepper " + example_stepper(library);
+}
+
+TEST(PluginAttacks, AConstructorRaisingSigsegvIsALoadErrorNotACrashOfRollbench) {
+  const testing::CliOutcome o = run_rollbench("list --stepper " + example_stepper("ctor_segv_stepper"));
+  EXPECT_EQ(o.code, 2);
+  EXPECT_EQ(o.err, "rollbench: 'stepper': '" + example_stepper("ctor_segv_stepper") +
+                       "': loading it (in a child process) crashed: its process was killed by signal 11 (SIGSEGV: "
+                       "Segmentation fault)\n");
+}
+
+TEST(PluginAttacks, InfoReturningNullOnItsSecondCallIsAskedOnceAndRuns) {
+  const std::filesystem::path csv = cli_temp_file("info-null.csv");
+  const testing::CliOutcome listed = run_rollbench("list --stepper " + example_stepper("info_null_stepper"));
+  EXPECT_EQ(listed.code, 0) << listed.err;
+  EXPECT_NE(listed.out.find("info-null-stepper"), std::string::npos) << listed.out;
+  const testing::CliOutcome o = run_rollbench(trajectory_with("info-null-stepper", "info_null_stepper", csv.string()));
+  EXPECT_EQ(o.code, 0) << o.err;
+}
+
+TEST(PluginAttacks, AForkingPluginHoldingThePipeIsOkAndItsGrandchildDoesNotOutliveTheRun) {
+  const std::filesystem::path csv = cli_temp_file("forks.csv"), pid_file = cli_temp_file("grandchild.pid");
+  std::filesystem::remove(pid_file);
+  ::setenv("RB_TEST_GRANDCHILD_PID_FILE", pid_file.c_str(), 1);
+  const testing::CliOutcome o = run_rollbench(trajectory_with("forks-stepper", "forks_stepper", csv.string()));
+  ::unsetenv("RB_TEST_GRANDCHILD_PID_FILE");
+  EXPECT_EQ(o.code, 0) << o.err;  // not "timeout": the run's end is the child's exit, not the pipe's
+  std::ifstream in(pid_file);
+  int pid = 0;
+  ASSERT_TRUE(in >> pid) << "the grandchild wrote no pid";
+  // gone, or a zombie waiting for its new parent to reap it: not running
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string field, name, state;
+  if (stat >> field >> name >> state) EXPECT_EQ(state, "Z") << "the grandchild " << pid << " is still running";
+}
+
+TEST(PluginAttacks, APluginWriting400MibIsKilledAtTheAnswerLimit) {
+  const std::filesystem::path csv = cli_temp_file("flood.csv");
+  const testing::CliOutcome o = run_rollbench(trajectory_with("flood-stepper", "flood_stepper", csv.string()));
+  EXPECT_EQ(o.code, 3);
+  EXPECT_EQ(o.err,
+            "rollbench: run stopped early at t = 0: crashed: stepper 'flood-stepper' crashed: its process sent more "
+            "than 134217728 bytes (the limit of an answer) and was killed; its state and cost are lost\n");
+}
+
+TEST(PluginAttacks, APluginCallingExitLeavesWithoutTheParentsAtexitHandlers) {
+  const std::filesystem::path csv = cli_temp_file("exit.csv");
+  const testing::CliOutcome o = run_rollbench(trajectory_with("exit-stepper", "exit_stepper", csv.string()));
+  EXPECT_EQ(o.code, 3);
+  EXPECT_EQ(o.err,
+            "rollbench: run stopped early at t = 0: crashed: stepper 'exit-stepper' crashed: it called exit() in its "
+            "process; its state and cost are lost\n");
+}
+
+}  // namespace
+}  // namespace rb
