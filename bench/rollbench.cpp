@@ -163,6 +163,7 @@ struct RunArgs {
   std::string preset, scenes, integrators, hs, tols, out, shard, cache, controller, regime;
   int repeats = -1, jobs = -1;
   double dt_out = std::nan("");  // NaN: not given
+  std::optional<double> t_end;   // given: checked, even "nan"
   bool no_stability = false;
   // the horizon study (bench/lib/horizon.hpp): --horizon-steps enables it
   std::string horizon_steps, horizon_scenes, horizon_integrators;
@@ -243,6 +244,11 @@ int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_
     if (!(a.dt_out > 0.0 && std::isfinite(a.dt_out)))
       throw rb::InputError("the output spacing must be a finite number > 0", "dt-out");
     spec.dt_out = a.dt_out;
+  }
+  if (a.t_end) {
+    if (!(*a.t_end > 0.0 && std::isfinite(*a.t_end)))
+      throw rb::InputError("the end time must be a finite number > 0", "t-end");
+    spec.t_end = *a.t_end;
   }
   spec.cache_dir = a.cache;
   if (!a.shard.empty()) {
@@ -394,8 +400,12 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--dt-out", run.dt_out,
                       "record the state every dt-out in the timed runs and measure error_max there "
                       "(default: the timed runs record t_end only; error_max is measured every 0.25 in untimed runs)");
-  run_cmd->add_option("--repeats", run.repeats, "timed repeats per run");
-  run_cmd->add_option("--jobs", run.jobs, "threads for the accuracy runs");
+  run_cmd->add_option("--t-end", run.t_end,
+                      "end every scene at the smaller of this and its own t_end (default: each scene's t_end; the "
+                      "quick preset's: 2)");
+  run_cmd->add_option("--repeats", run.repeats,
+                      "timed repeats per run (default: the preset's; quick 2, default 3, full 7, regime 3)");
+  run_cmd->add_option("--jobs", run.jobs, "threads for the accuracy runs (default: 2)");
   run_cmd->add_option("--shard", run.shard, "i/n: run one slice of the sweep (join with `rollbench merge`)");
   run_cmd->add_option("--cache", run.cache, "directory for cached reference solutions");
   run_cmd->add_flag("--no-stability", run.no_stability, "skip the stability study of the preset");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -287,7 +288,12 @@ Scene read_scene(const json& root, const std::string& source) {
 // What needs the landscape: a regular, finite, tangential start.
 void check_start(const Scene& s, const RollingBall& model) {
   const Vec2 a = s.start.contact;
-  if (!s.domain.contains(a.x(), a.y())) throw InputError("the start contact lies outside the domain", "start.contact");
+  if (!s.domain.contains(a.x(), a.y())) {
+    char where[256];
+    std::snprintf(where, sizeof where, "the start contact (%g, %g) lies outside the domain [%g, %g] x [%g, %g]", a.x(),
+                  a.y(), s.domain.xmin, s.domain.xmax, s.domain.ymin, s.domain.ymax);
+    throw InputError(where, "start.contact");
+  }
   const Jet2<double> f = model.landscape().at(a.x(), a.y());
   for (const double d : {f.f, f.fx, f.fy, f.fxx, f.fxy, f.fyy})
     if (!std::isfinite(d))

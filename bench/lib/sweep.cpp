@@ -170,6 +170,17 @@ std::vector<SweepScene> prepare_scenes(const SweepSpec& spec, bool with_referenc
     names.clear();
     for (const Scene& g : generated) names.push_back(g.name);
   }
+  // every scene is read and checked before the first reference (minutes on
+  // a long scene), its error naming the file
+  std::vector<Scene> loaded = generated;
+  if (!spec.regime)
+    for (const std::string& name : names) {
+      try {
+        loaded.push_back(load_scene(name));
+      } catch (const InputError& e) {
+        throw InputError("in " + name + ": " + e.what(), "scenes");
+      }
+    }
   std::vector<SweepScene> out;
   const auto start = std::chrono::steady_clock::now();
   for (const std::string& name : names) {
@@ -178,7 +189,7 @@ std::vector<SweepScene> prepare_scenes(const SweepSpec& spec, bool with_referenc
                              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                              "scenes") +
                " (next: " + name + ")");
-    Scene scene = spec.regime ? generated[out.size()] : load_scene(name);
+    Scene scene = loaded[out.size()];
     if (spec.t_end > 0.0) scene.t_end = std::min(scene.t_end, spec.t_end);
     Problem problem = make_problem(scene);
     const double spacing = spec.dt_out > 0.0 ? spec.dt_out : spec.error_dt;

@@ -110,6 +110,46 @@ TEST(Cli, RunRefusesAMisspeltIntegratorBeforeAnyReference) {
   EXPECT_EQ(o.err, "rollbench: 'integrator': unknown integrator 'rkmk44' (`rollbench list` shows them all)\n");
 }
 
+TEST(Cli, RunChecksEverySceneBeforeAnyReferenceNamingTheFile) {
+  // the good scene comes first; its reference is neither made nor announced
+  const fs::path bad = temp_file("bad-scene.json");
+  std::ofstream(bad) << R"({"name": "bad", "description": "a start off its domain", "landscape": "0.1*x^2",
+    "domain": [-2, 2, -1, 1], "ball": {"radius": 0.1, "mass": 1.0},
+    "start": {"contact": [0.5, 3.0], "velocity": [0.1, 0.0], "spin": 0.0, "orientation": [1, 0, 0, 0]},
+    "t_end": 1.0})";
+  const Outcome o = rollbench("run --scenes chaplygin-bumpy-long," + bad.string() + " --integrators rk4 --out " +
+                              temp_file("bad-scene-report.json").string());
+  EXPECT_EQ(o.code, 2);
+  EXPECT_EQ(o.err.find("reference of"), std::string::npos) << o.err;
+  EXPECT_NE(o.err.find("rollbench: 'scenes': in " + bad.string() +
+                       ": 'start.contact': the start contact (0.5, 3) lies outside the domain [-2, 2] x [-1, 1]\n"),
+            std::string::npos)
+      << o.err;
+}
+
+TEST(Cli, RunTEndShortensEveryScenesRunAndIsChecked) {
+  const fs::path report = temp_file("t-end.json");
+  const Outcome o =
+      rollbench("run --scenes plane --integrators rk4 --h 0.25 --repeats 0 --t-end 1.5 --out " + report.string());
+  ASSERT_EQ(o.code, 0) << o.err;
+  const nlohmann::json j = nlohmann::json::parse(slurp(report));
+  EXPECT_EQ(j.at("options").at("t_end"), 1.5);
+  for (const char* bad : {"0", "-1", "inf", "nan"}) {
+    const Outcome b = rollbench(std::string("run --scenes plane --t-end ") + bad + " --out " + report.string());
+    EXPECT_EQ(b.code, 2) << bad;
+    EXPECT_EQ(b.err, "rollbench: 't-end': the end time must be a finite number > 0\n") << bad;
+  }
+}
+
+TEST(Cli, RunHelpShowsTheDefaultsOfRepeatsAndJobs) {
+  const Outcome o = rollbench("run --help");
+  EXPECT_EQ(o.code, 0);
+  EXPECT_NE(o.out.find("timed repeats per run (default: the preset's; quick 2, default 3, full 7, regime 3)"),
+            std::string::npos)
+      << o.out;
+  EXPECT_NE(o.out.find("threads for the accuracy runs (default: 2)"), std::string::npos) << o.out;
+}
+
 TEST(Cli, RunWithoutAPresetHasNoStabilityStudy) {
   const fs::path report = temp_file("no-preset.json");
   const Outcome o =

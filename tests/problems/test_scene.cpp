@@ -275,6 +275,9 @@ TEST(SceneErrors, StartOutsideDomainIrregularOrNotFinite) {
   json s = base_scene();
   s["start"]["contact"] = {3.0, 0.0};
   expect_key(s, "start.contact");
+  // the message says the point and the domain it missed
+  EXPECT_STREQ(error_of(s.dump()).what(),
+               "'start.contact': the start contact (3, 0) lies outside the domain [-2, 2] x [-2, 2]");
   // r * kappa = 0.1 * 20 >= 1: the ball does not fit the valley
   s = base_scene();
   s["params"]["a"] = 10.0;
