@@ -70,8 +70,7 @@ std::string entry_problem(const nlohmann::json& j, const nlohmann::json& expecte
   if (!j.is_object() || !j.contains("made_from") || !j.contains("checksum") || !j.contains("reference"))
     return "not a cache entry";
   if (j["made_from"] != expected) return "made from another scene, grid, method or code version";
-  if (!j["checksum"].is_string() || j["checksum"] != sha256_hex(j["reference"].dump() + j["made_from"].dump()))
-    return "checksum differs";
+  if (!j["checksum"].is_string() || j["checksum"] != cache_entry_checksum(j)) return "checksum differs";
   const nlohmann::json& r = j["reference"];
   if (!r.is_object() || !r.contains("kind") || !r.contains("t") || !r.contains("points")) return "fields missing";
   if (r["t"] != nlohmann::json(times)) return "another output grid";
@@ -85,6 +84,12 @@ std::string entry_problem(const nlohmann::json& j, const nlohmann::json& expecte
     if (!row.is_array() || row.size() != 17) return "a point without its 17 numbers";
     for (const nlohmann::json& v : row)
       if (!v.is_number() || !std::isfinite(v.get<double>())) return "a point with a value that is not finite";
+    // the checksum holds no secret, so a forged entry can carry a right one: its content must still be a
+    // reference, its R a rotation (a zeroed point is not)
+    Mat3 R;
+    for (int i = 0; i < 9; ++i) R(i / 3, i % 3) = row[static_cast<std::size_t>(8 + i)].get<double>();
+    if ((R.transpose() * R - Mat3::Identity()).norm() > 1e-8 || R.determinant() <= 0.0)
+      return "a point whose R is not a rotation";
   }
   if (!r.contains("error") || !r["error"].is_number() || !(r["error"].get<double>() >= 0.0))
     return "no finite own error";
@@ -135,6 +140,10 @@ Reference from_json(const nlohmann::json& j) {
 }
 
 }  // namespace
+
+std::string cache_entry_checksum(const nlohmann::json& entry) {
+  return sha256_hex(entry["reference"].dump() + entry["made_from"].dump());
+}
 
 ReferencePoint reference_point_of(const Problem& problem, const FlatState& y) {
   const Derived d = problem.model().derived(y);
@@ -243,7 +252,7 @@ Reference make_reference(const Problem& problem, const std::string& scene_conten
       // the checksum over the text as it is read back (dump is canonical)
       entry["reference"] =
           nlohmann::json::parse(entry["reference"].dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
-      entry["checksum"] = sha256_hex(entry["reference"].dump() + entry["made_from"].dump());
+      entry["checksum"] = cache_entry_checksum(entry);
       write_output_file(cache_file.string(), entry.dump(), "cache");
     } catch (const InputError&) {
     }

@@ -8,6 +8,7 @@
 // replaces the computed one for every component it knows, and the computed
 // one checks it. References are cached on disk, keyed by the scene file's
 // content, the output grid and the code version.
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,10 @@ ReferencePoint reference_point_of(const Problem& problem, const FlatState& y);
 
 // Largest disagreement of two points over the four components.
 double point_distance(const ReferencePoint& a, const ReferencePoint& b);
+
+// A cache entry's checksum: SHA-256 over its reference and what it is made
+// from. It holds no secret: it finds damage, and the content checks find forgeries.
+std::string cache_entry_checksum(const nlohmann::json& entry);
 
 // The commit of the source tree, or "unknown".
 std::string code_version();

@@ -19,7 +19,10 @@ constexpr const char* kKey = "regime";
 std::string label(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%.6g", v);
-  return text;
+  std::string out = text;
+  // "1e+06" -> "1e06": a scene name takes no '+' (problems/safe_name.hpp)
+  out.erase(std::remove(out.begin(), out.end(), '+'), out.end());
+  return out;
 }
 
 std::vector<std::string> split(const std::string& text, char separator) {

@@ -188,5 +188,14 @@ TEST(RegimeCli, TheGridGoesWithTheRegimePresetAndNoScenes) {
             "moments break the triangle inequality)\n");
 }
 
+TEST(RegimeScenes, ALongHorizonMakesASafeSceneName) {
+  // "%.6g" writes 1e6 as "1e+06", and a scene name takes no '+'
+  const std::vector<Scene> scenes =
+      regime_scenes(parse_regime_grid("inertia=1;spin=5;roughness=0.1;t_end=1e6", default_regime_grid()));
+  ASSERT_EQ(scenes.size(), 1u);
+  EXPECT_NE(scenes[0].name.find("1e06"), std::string::npos) << scenes[0].name;
+  EXPECT_EQ(scenes[0].name.find('+'), std::string::npos) << scenes[0].name;
+}
+
 }  // namespace
 }  // namespace rb

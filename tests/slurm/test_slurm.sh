@@ -141,7 +141,8 @@ ROLLBENCH="$tmp/rollbench-node" submit --dir "$tmp/study2" --shards 3 --no-plot 
 for i in 0 2; do [ -f "$tmp/study2/shards/shard-$i.json" ] || fail "shard $i's report is gone"; done
 [ ! -e "$tmp/study2/shards/shard-1.json" ] || fail "the failed shard left a report"
 [ ! -e "$tmp/study2/report.json" ] || fail "a merged report was written with a shard missing"
-grep -qF "rollbench: 'ball.radius': the radius must be > 0" "$tmp/study2/logs/shard-1.log" \
+grep -qF "rollbench: 'scenes': in $tmp/broken-scene.json: 'ball.radius': the radius must be > 0" \
+  "$tmp/study2/logs/shard-1.log" \
   || fail "shard 1's log does not say what was wrong"
 grep -qF "rollbench: 'reports': shard 1 of 3 is missing (given: 0, 2)" "$tmp/study2/logs/merge.log" \
   || fail "the merge did not name the missing shard"
