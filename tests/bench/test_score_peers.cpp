@@ -2,7 +2,9 @@
 // docs/formats.md "Peer runs") become report runs with the errors `score`
 // gives their trajectories; a malformed peer file exits 2 naming the key.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -90,6 +92,42 @@ TEST(ScorePeers, AMalformedPeerFileNamesTheKey) {
   EXPECT_NE(o.err.find("'runs[0].status'"), std::string::npos) << o.err;
   o = run_rollbench("score plane " + csv.string() + " --into r.json");
   EXPECT_EQ(o.err, "rollbench: 'into': goes with --peers\n");
+}
+
+// issue 32: a peer file's trajectory is a path inside the peer file's own
+// folder, a regular file; nothing else is opened, and no content is quoted.
+TEST(ScorePeers, ATrajectoryOutsideThePeerFilesFolderOrNotARegularFileIsRefused) {
+  namespace fs = std::filesystem;
+  const fs::path dir = cli_temp_file("peer-confined"), outside = cli_temp_file("peer-secret.txt");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(outside) << "the-secret-content\n";
+  fs::create_symlink(outside, dir / "link-out.csv");
+  fs::create_symlink("/dev/zero", dir / "zero.csv");
+  ASSERT_EQ(::mkfifo((dir / "fifo.csv").c_str(), 0600), 0);
+  const fs::path peers = dir / "peers.json";
+  auto refusal = [&](const std::string& trajectory) {
+    json p = peer_file(dir / "unused.csv");
+    p["runs"][0]["trajectory"] = trajectory;
+    std::ofstream(peers) << p.dump();
+    const testing::CliOutcome o =
+        run_rollbench("score --peers " + peers.string() + " --out " + cli_temp_file("x.json").string());
+    EXPECT_EQ(o.code, 2) << trajectory << ": " << o.err;
+    EXPECT_EQ(o.err.find("the-secret-content"), std::string::npos) << o.err;
+    EXPECT_NE(o.err.find("'runs[0].trajectory'"), std::string::npos) << o.err;
+    return o.err;
+  };
+  const std::string inside = "' is not a path inside the peer file's folder";
+  EXPECT_NE(refusal("../" + outside.filename().string()).find("'../" + outside.filename().string() + inside),
+            std::string::npos);
+  EXPECT_NE(refusal(outside.string()).find("'" + outside.string() + inside), std::string::npos);
+  EXPECT_NE(refusal("link-out.csv").find("'link-out.csv' leads out of the peer file's folder"), std::string::npos);
+  EXPECT_NE(refusal("zero.csv").find("'zero.csv' leads out of the peer file's folder"), std::string::npos);
+  EXPECT_NE(refusal("fifo.csv")
+                .find("the trajectory '" + fs::weakly_canonical(dir / "fifo.csv").string() + "' is not a regular file"),
+            std::string::npos);  // opened without blocking: a FIFO never hangs it
+  fs::remove_all(dir);
+  fs::remove(outside);
 }
 
 }  // namespace
