@@ -131,8 +131,10 @@ def scene_line(scene, cells):
     values = sorted(r[0] for *_, r in cells)
     cheaper = sum(1 for v in values if v > 1)
     low, high = min(r[1] for *_, r in cells), max(r[2] for *_, r in cells)
-    who = "the Lie method is cheaper" if cheaper * 2 > len(values) else "**the flat method wins**"
-    return (f"- {scene}: {who} in {cheaper} of {len(values)} pair × target cells; flat/Lie {values[0]:.2f} to "
+    lie_wins = cheaper * 2 > len(values)
+    who = "the Lie method is cheaper" if lie_wins else "**the flat method wins**"
+    count = cheaper if lie_wins else len(values) - cheaper  # the count of the side named
+    return (f"- {scene}: {who} in {count} of {len(values)} pair × target cells; flat/Lie {values[0]:.2f} to "
             f"{values[-1]:.2f} (median {values[len(values) // 2]:.2f}; repeats span {low:.2f}–{high:.2f}).")
 
 
