@@ -88,8 +88,7 @@ std::string entry_problem(const nlohmann::json& j, const nlohmann::json& expecte
     // reference, its R a rotation (a zeroed point is not)
     Mat3 R;
     for (int i = 0; i < 9; ++i) R(i / 3, i % 3) = row[static_cast<std::size_t>(8 + i)].get<double>();
-    if ((R.transpose() * R - Mat3::Identity()).norm() > 1e-8 || R.determinant() <= 0.0)
-      return "a point whose R is not a rotation";
+    if (rotation_defect(R) > 1e-8 || R.determinant() <= 0.0) return "a point whose R is not a rotation";
   }
   if (!r.contains("error") || !r["error"].is_number() || !(r["error"].get<double>() >= 0.0))
     return "no finite own error";

@@ -54,6 +54,11 @@ void plant(const fs::path& entry, Change change, bool reseal) {
   std::ofstream(entry) << j.dump();
 }
 
+void zero_every_point(nlohmann::json& points) {
+  for (auto& row : points)
+    for (auto& v : row) v = 0.0;
+}
+
 class CacheEntries : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -92,24 +97,12 @@ TEST_F(CacheEntries, AnIntactEntryIsUsed) {
 }
 
 TEST_F(CacheEntries, AZeroedEntryIsRecomputed) {
-  plant(
-      entry,
-      [](nlohmann::json& points) {
-        for (auto& row : points)
-          for (auto& v : row) v = 0.0;
-      },
-      false);
+  plant(entry, zero_every_point, false);
   expect_refused("checksum differs");
 }
 
 TEST_F(CacheEntries, AZeroedEntryWithARightChecksumIsRecomputed) {
-  plant(
-      entry,
-      [](nlohmann::json& points) {
-        for (auto& row : points)
-          for (auto& v : row) v = 0.0;
-      },
-      true);
+  plant(entry, zero_every_point, true);
   expect_refused("a point whose R is not a rotation");
 }
 
