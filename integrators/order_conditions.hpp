@@ -5,6 +5,7 @@
 // Solving ODEs I, II.2). The checker works on plain data (stages, A
 // row-major, b, c) so that any tableau type, a tableau file or a test can
 // call it.
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
@@ -16,11 +17,14 @@ namespace rb {
 inline constexpr int kMaxConditionOrder = 10;
 
 // An order condition holds when |Phi(t) - 1/gamma(t)| is at most this
-// (unless a tableau file sets its own order_tolerance: published tables
-// given to ~10 digits miss it by ~1e-10).
+// (unless a tableau file sets its own order_tolerance).
 inline constexpr double kOrderConditionTolerance = 1e-12;
-// The loosest tolerance a tableau may ask for: beyond it an order claim says little.
-inline constexpr double kMaxOrderTolerance = 1e-6;
+// The loosest tolerance a tableau may ask for. A looser one certifies broken
+// methods: an RK4 with b_1, b_2 moved by 1.8e-6 is truly order 1 (its error
+// stops falling at ~1e-8), yet meets every order-4 condition to 1e-6.
+inline constexpr double kMaxOrderTolerance = 1e-10;
+// "a number > 0 and at most 1e-10 (...)": what an order_tolerance must be.
+std::string order_tolerance_rule();
 
 struct RootedTree {
   int order = 1;              // |t|, the number of vertices
@@ -61,6 +65,18 @@ struct OrderConditionCheck {
 OrderConditionCheck check_order_conditions(int stages, std::span<const double> a, std::span<const double> w,
                                            std::span<const double> c, int max_order, double theta = 1.0,
                                            double tolerance = kOrderConditionTolerance);
+
+// An exact coefficient p/q (q > 0), as a tableau file may give it ("1/6").
+struct Fraction {
+  std::int64_t numerator = 0;
+  std::int64_t denominator = 1;
+};
+
+// The same check in exact rational arithmetic (theta = 1): a condition holds
+// only when sum_i w_i Phi_i(t) equals 1/gamma(t) exactly. The failure's
+// numbers are the exact values rounded to doubles.
+OrderConditionCheck check_order_conditions_exact(int stages, std::span<const Fraction> a, std::span<const Fraction> w,
+                                                 std::span<const Fraction> c, int max_order);
 
 // "tree [tau^2] of order 3: Phi = 0.3, 1/gamma = 0.333333333333333, residual
 // -3.333e-02": Phi and 1/gamma to 15 digits, so that any residual above the

@@ -82,8 +82,7 @@ Tableau::Tableau(TableauCoefficients coefficients) : k_(std::move(coefficients))
   if (k_.c.size() != s) throw InputError("c must have " + std::to_string(s) + " entries", "c");
   if (k_.order < 1) throw InputError("the declared order must be >= 1", "order");
   if (!(k_.order_tolerance > 0.0 && k_.order_tolerance <= kMaxOrderTolerance))
-    throw InputError("must be a number > 0 and at most 1e-6 (the order conditions are checked to it)",
-                     "order_tolerance");
+    throw InputError("must be " + order_tolerance_rule(), "order_tolerance");
   check_finite(k_.a, "A", "a");
   for (std::size_t i = 0; i < s; ++i) {
     if (!std::isfinite(k_.b[i]) || !std::isfinite(k_.c[i])) throw InputError("b and c must be finite", "b");

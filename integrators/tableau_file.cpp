@@ -1,6 +1,7 @@
 #include "integrators/tableau_file.hpp"
 
 #include <algorithm>
+#include <boost/multiprecision/cpp_int.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -62,22 +63,65 @@ double number_at(const json& v, const std::string& key, const std::string& where
   return x;
 }
 
-// An array of exactly n numbers; why says where n comes from.
-std::vector<double> numbers_at(const json& v, const std::string& key, long n, const std::string& why) {
+// Numerators and denominators up to 2^53: each is a double, so p / q in
+// doubles is the correctly rounded value of the fraction.
+constexpr std::int64_t kMaxFractionPart = std::int64_t{1} << 53;
+// A JSON number is exact when it is a multiple of 2^-20 (0, 1, 0.5, 0.375):
+// binary holds such decimals as written; 0.1 or 1/3 to 16 digits it does not.
+constexpr double kExactUnit = 1.0 / (1 << 20);
+
+// One coefficient as the file gives it: a number, or a fraction "p/q" (or an
+// integer "p") held exactly beside its double.
+struct Coefficient {
+  double value = 0.0;
+  std::optional<Fraction> exact;  // none for a number binary cannot hold as written
+};
+
+std::optional<std::int64_t> integer_part(const std::string& digits) {
+  if (digits.empty() || digits.size() > 16 || !std::all_of(digits.begin(), digits.end(), ::isdigit)) return {};
+  const std::int64_t n = std::stoll(digits);
+  return n <= kMaxFractionPart ? std::optional(n) : std::nullopt;
+}
+
+Coefficient coefficient_at(const json& v, const std::string& key, const std::string& where) {
+  if (v.is_string()) {
+    const std::string text = v.get<std::string>();
+    const std::size_t slash = text.find('/');
+    const bool has_sign = !text.empty() && (text[0] == '-' || text[0] == '+');
+    const bool negative = has_sign && text[0] == '-';
+    const std::size_t from = has_sign ? 1 : 0;
+    const auto p = integer_part(text.substr(from, slash == std::string::npos ? std::string::npos : slash - from));
+    const auto q = slash == std::string::npos ? std::optional<std::int64_t>(1) : integer_part(text.substr(slash + 1));
+    if (!p || !q || *q == 0)
+      throw InputError(
+          where + " is the string " + v.dump() + ", not a number or a fraction \"p/q\" (integers up to 2^53, q > 0)",
+          key);
+    const Fraction f{negative ? -*p : *p, *q};
+    return {static_cast<double>(f.numerator) / static_cast<double>(f.denominator), f};
+  }
+  Coefficient c{number_at(v, key, where), std::nullopt};
+  const double units = c.value / kExactUnit;
+  if (units == std::floor(units) && std::abs(units) <= static_cast<double>(kMaxFractionPart))
+    c.exact = Fraction{static_cast<std::int64_t>(units), std::int64_t{1} << 20};
+  return c;
+}
+
+// An array of exactly n coefficients; why says where n comes from.
+std::vector<Coefficient> numbers_at(const json& v, const std::string& key, long n, const std::string& why) {
   if (!v.is_array())
     throw InputError("must be an array of " + std::to_string(n) + " numbers, not a " + v.type_name(), key);
   if (v.size() != static_cast<std::size_t>(n))
     throw InputError("has " + std::to_string(v.size()) + " entries, not " + std::to_string(n) + why, key);
-  std::vector<double> out;
-  for (std::size_t i = 0; i < v.size(); ++i) out.push_back(number_at(v[i], key, "entry " + std::to_string(i)));
+  std::vector<Coefficient> out;
+  for (std::size_t i = 0; i < v.size(); ++i) out.push_back(coefficient_at(v[i], key, "entry " + std::to_string(i)));
   return out;
 }
 
-// A square matrix: rows arrays of as many numbers as there are rows.
-std::vector<std::vector<double>> square_at(const json& v, const std::string& key) {
+// A square matrix: rows arrays of as many coefficients as there are rows.
+std::vector<std::vector<Coefficient>> square_at(const json& v, const std::string& key) {
   if (!v.is_array() || v.empty()) throw InputError("must be an array of rows (arrays of numbers)", key);
   const long n = static_cast<long>(v.size());
-  std::vector<std::vector<double>> rows;
+  std::vector<std::vector<Coefficient>> rows;
   for (std::size_t i = 0; i < v.size(); ++i) {
     if (!v[i].is_array())
       throw InputError("row " + std::to_string(i) + " is a " + v[i].type_name() + ", not an array of numbers", key);
@@ -104,12 +148,33 @@ bool registry_safe(const std::string& name) {
   });
 }
 
+// The doubles of coefficients, and their fractions when every one is exact.
+struct Split {
+  std::vector<double> values;
+  std::optional<std::vector<Fraction>> exact;
+};
+
+Split split(const std::vector<Coefficient>& coefficients) {
+  Split out;
+  out.exact.emplace();
+  for (const Coefficient& c : coefficients) {
+    out.values.push_back(c.value);
+    if (c.exact && out.exact) out.exact->push_back(*c.exact);
+    else out.exact.reset();
+  }
+  return out;
+}
+
 // A, b, c as the file gives them: separately, or as the seminar's matrix.
 struct Coefficients {
   std::vector<double> a, b, c;  // a: s x s row-major
+  // the same as fractions, when the file gives every one exactly: the
+  // order conditions are then checked exactly
+  std::optional<std::vector<Fraction>> exact_a, exact_b, exact_c;
   bool butcher = false;
   double order_tolerance = kOrderConditionTolerance;
   int stages() const { return static_cast<int>(b.size()); }
+  bool exact() const { return exact_a && exact_b && exact_c; }
   // the file's key a Tableau error about key ("a", "b", "c") belongs to
   std::string file_key(const std::string& key) const {
     if (butcher && (key == "a" || key == "b" || key == "c")) return "butcher";
@@ -118,32 +183,74 @@ struct Coefficients {
 };
 
 Coefficients read_coefficients(const json& doc) {
-  Coefficients k;
+  std::vector<Coefficient> a, b, c;
+  bool butcher = false;
   const bool separate = doc.contains("c") || doc.contains("A") || doc.contains("b");
   if (doc.contains("butcher")) {
     if (separate) throw InputError("give either butcher or c, A and b, not both", "butcher");
     // rows [c_i, a_i1 ... a_is], then [0, b_1 ... b_s]
-    const std::vector<std::vector<double>> m = square_at(doc["butcher"], "butcher");
+    const std::vector<std::vector<Coefficient>> m = square_at(doc["butcher"], "butcher");
     const std::size_t s = m.size() - 1;
     if (s == 0) throw InputError("needs at least 2 rows: [c_1, a_11], then [0, b_1]", "butcher");
-    if (m[s][0] != 0.0) throw InputError("the last row holds [0, b_1 ... b_s]: its first entry must be 0", "butcher");
+    if (m[s][0].value != 0.0)
+      throw InputError("the last row holds [0, b_1 ... b_s]: its first entry must be 0", "butcher");
     for (std::size_t i = 0; i < s; ++i) {
-      k.c.push_back(m[i][0]);
-      k.a.insert(k.a.end(), m[i].begin() + 1, m[i].end());
+      c.push_back(m[i][0]);
+      a.insert(a.end(), m[i].begin() + 1, m[i].end());
     }
-    k.b.assign(m[s].begin() + 1, m[s].end());
-    k.butcher = true;
-    return k;
+    b.assign(m[s].begin() + 1, m[s].end());
+    butcher = true;
+  } else {
+    for (const char* key : {"c", "A", "b"})
+      if (!doc.contains(key)) throw InputError("missing required key (or give butcher instead of c, A and b)", key);
+    const std::vector<std::vector<Coefficient>> rows = square_at(doc["A"], "A");
+    const long s = static_cast<long>(rows.size());
+    for (const auto& row : rows) a.insert(a.end(), row.begin(), row.end());
+    const std::string why = " (A has " + std::to_string(s) + " rows)";
+    c = numbers_at(doc["c"], "c", s, why);
+    b = numbers_at(doc["b"], "b", s, why);
   }
-  for (const char* key : {"c", "A", "b"})
-    if (!doc.contains(key)) throw InputError("missing required key (or give butcher instead of c, A and b)", key);
-  const std::vector<std::vector<double>> a = square_at(doc["A"], "A");
-  const long s = static_cast<long>(a.size());
-  for (const auto& row : a) k.a.insert(k.a.end(), row.begin(), row.end());
-  const std::string why = " (A has " + std::to_string(s) + " rows)";
-  k.c = numbers_at(doc["c"], "c", s, why);
-  k.b = numbers_at(doc["b"], "b", s, why);
+  Coefficients k;
+  Split sa = split(a), sb = split(b), sc = split(c);
+  k.a = std::move(sa.values);
+  k.b = std::move(sb.values);
+  k.c = std::move(sc.values);
+  k.exact_a = std::move(sa.exact);
+  k.exact_b = std::move(sb.exact);
+  k.exact_c = std::move(sc.exact);
+  k.butcher = butcher;
   return k;
+}
+
+// For a file of exact coefficients: every row of A sums to its c exactly.
+void check_rows_exactly(const Coefficients& k) {
+  using boost::multiprecision::cpp_rational;
+  const auto s = static_cast<std::size_t>(k.stages());
+  for (std::size_t i = 0; i < s; ++i) {
+    cpp_rational row = 0;
+    for (std::size_t j = 0; j < s; ++j)
+      row += cpp_rational((*k.exact_a)[i * s + j].numerator) / (*k.exact_a)[i * s + j].denominator;
+    if (row != cpp_rational((*k.exact_c)[i].numerator) / (*k.exact_c)[i].denominator)
+      throw InputError("c[" + std::to_string(i) + "] must equal the sum of row " + std::to_string(i) +
+                           " of A exactly (the file gives every coefficient exactly)",
+                       k.file_key("c"));
+  }
+}
+
+// The exact check of weights w to order (the highest that holds when order
+// is none); throws naming the first tree that fails, like Tableau does.
+int exact_order_of(const Coefficients& k, const std::vector<Fraction>& w, const std::optional<int>& order,
+                   const std::string& subject, const std::string& key) {
+  const OrderConditionCheck check =
+      check_order_conditions_exact(k.stages(), *k.exact_a, w, *k.exact_c, order.value_or(kMaxConditionOrder));
+  if (order && check.failure)
+    throw InputError(subject + " " + std::to_string(*order) +
+                         " but satisfy the order conditions exactly only to order " +
+                         std::to_string(check.satisfied_order) + " (" + describe(*check.failure) + ")",
+                     key);
+  if (check.satisfied_order == 0)
+    throw InputError("the weights satisfy no order condition exactly (" + describe(*check.failure) + ")", key);
+  return check.satisfied_order;
 }
 
 // The tableau, checked by Tableau itself; without a declared order, the
@@ -170,11 +277,15 @@ Tableau make_tableau(const std::string& name, const std::optional<int>& order, c
   }
 }
 
-// b_err against its conditions; err_order, when not given, is the highest that holds.
-int check_embedded(const Coefficients& k, const std::vector<double>& b_err, const std::optional<int>& err_order) {
-  if (b_err == k.b) throw InputError("equals b: the error estimate b - b_err would be zero", "b_err");
+// b_err against its conditions; err_order, when not given, is the highest
+// that holds (exactly, when b_err and the tableau are given exactly).
+int check_embedded(const Coefficients& k, const std::vector<Coefficient>& given, const std::optional<int>& err_order) {
+  const Split b_err = split(given);
+  if (b_err.values == k.b) throw InputError("equals b: the error estimate b - b_err would be zero", "b_err");
+  if (k.exact() && b_err.exact)
+    return exact_order_of(k, *b_err.exact, err_order, "the embedded weights declare err_order", "b_err");
   const OrderConditionCheck check = check_order_conditions(
-      k.stages(), k.a, b_err, k.c, err_order.value_or(kMaxConditionOrder), 1.0, k.order_tolerance);
+      k.stages(), k.a, b_err.values, k.c, err_order.value_or(kMaxConditionOrder), 1.0, k.order_tolerance);
   if (err_order && check.failure)
     throw InputError("the embedded weights declare err_order " + std::to_string(*err_order) +
                          " but satisfy the order conditions only to order " + std::to_string(check.satisfied_order) +
@@ -203,11 +314,17 @@ TableauFile read_tableau(const json& doc, const std::string& path) {
   if (doc.contains("order_tolerance")) {
     k.order_tolerance = number_at(doc["order_tolerance"], "order_tolerance", "order_tolerance");
     if (!(k.order_tolerance > 0.0 && k.order_tolerance <= kMaxOrderTolerance))
-      throw InputError("must be a number > 0 and at most 1e-6 (the order conditions are checked to it), not " +
-                           doc["order_tolerance"].dump(),
+      throw InputError("must be " + order_tolerance_rule() + ", not " + doc["order_tolerance"].dump(),
                        "order_tolerance");
   }
-  TableauFile file{path, make_tableau(name, order, k), order.has_value()};
+  // given exactly, the conditions are checked exactly first: a tolerance
+  // cannot then pass a method that misses its order by a little
+  std::optional<int> checked_order = order;
+  if (k.exact()) {
+    check_rows_exactly(k);
+    checked_order = exact_order_of(k, *k.exact_b, order, "the weights declare order", k.file_key("b"));
+  }
+  TableauFile file{path, make_tableau(name, checked_order, k), order.has_value()};
   // the one tableau: b propagates, e = b - b_err estimates the error
   TableauCoefficients full;
   full.name = name;
@@ -218,10 +335,10 @@ TableauFile read_tableau(const json& doc, const std::string& path) {
   full.order_tolerance = k.order_tolerance;
   const bool has_b_err = doc.contains("b_err") && !doc["b_err"].is_null();
   if (has_b_err) {
-    const std::vector<double> b_err =
+    const std::vector<Coefficient> b_err =
         numbers_at(doc["b_err"], "b_err", k.stages(), " (b has " + std::to_string(k.stages()) + ")");
     full.embedded_order = check_embedded(k, b_err, err_order);
-    for (std::size_t i = 0; i < b_err.size(); ++i) full.e.push_back(k.b[i] - b_err[i]);
+    for (std::size_t i = 0; i < b_err.size(); ++i) full.e.push_back(k.b[i] - b_err[i].value);
   } else if (err_order) {
     throw InputError("goes with b_err, which the file does not give", "err_order");
   }
