@@ -18,8 +18,9 @@ packages=(
 # only scripts/test.sh needs these: the SLURM test's single-node cluster
 # (tests/slurm/test_slurm.sh), chromium for the index.html test, flake8 for
 # the Python lint (lint.python), clang-format for the C++ one (lint.format);
-# the main job stays lean without them
-test_packages=(slurm-wlm munge chromium python3-flake8 clang-format-14)
+# the main job stays lean without them; octave and liboctave-dev for the Octave
+# peer's test (tests/peers/test_octave_peer.py: mkoctfile builds its oct-file)
+test_packages=(slurm-wlm munge chromium python3-flake8 clang-format-14 octave liboctave-dev)
 case "${1:-}" in
   "") ;;
   --tests) packages+=("${test_packages[@]}") ;;

@@ -25,6 +25,12 @@ if(NOT RB_SANITIZE)
            WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
   set_tests_properties(analysis.scipy_peer PROPERTIES ENVIRONMENT
     "RB_ROLLBENCH=$<TARGET_FILE:rollbench>;RB_PROBLEM_LIB=$<TARGET_FILE:rollbench_problem>")
+  # the Octave peer: Debian's octave and liboctave-dev (install-deps.sh --tests)
+  add_test(NAME analysis.octave_peer
+           COMMAND ${RB_PYTHON3} -m unittest tests.peers.test_octave_peer
+           WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
+  set_tests_properties(analysis.octave_peer PROPERTIES TIMEOUT 600 ENVIRONMENT
+    "RB_ROLLBENCH=$<TARGET_FILE:rollbench>;RB_PROBLEM_LIB=$<TARGET_FILE:rollbench_problem>")
 endif()
 
 # the Python of analysis/, tests/ and scripts/ passes flake8 (.flake8 holds

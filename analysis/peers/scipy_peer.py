@@ -15,8 +15,6 @@ measured apart (rhs_cost) so that readers can subtract it.
     /usr/bin/python3 -m analysis.peers.scipy_peer --scene chaplygin-valley --t-end 2 --out out/peers
 """
 import argparse
-import json
-import math
 import os
 import platform
 import sys
@@ -26,7 +24,7 @@ import numpy as np
 import scipy
 from scipy.integrate import solve_ivp
 
-from analysis.peers import problem_lib
+from analysis.peers import peer_file, problem_lib
 
 # name: (report name, declared order, the order as SciPy's documentation states it, uses the Jacobian)
 METHODS = {
@@ -37,32 +35,11 @@ METHODS = {
     "LSODA": ("scipy-lsoda", 12, "variable: Adams 1–12, BDF 1–5", True),  # switched by stiffness
 }
 DEFAULT_TOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10)
-ERROR_DT = 0.25  # the runner's error grid (rollbench run without --dt-out)
 TIMING = ("wall_s: time.perf_counter around solve_ivp (dense_output=True) and the evaluation of its dense "
           "output at the output times, per timed repeat, Python's overhead included (the right-hand side is "
           "called through ctypes); rhs_cost: the bare rhs and Jacobian through the same ctypes wrapper at the "
           "start, timed apart, so that rhs_evals x python_s_per_call is the evaluations' share to subtract")
 STATUS_OF_CODE = {"diverged", "lift-off", "curvature", "domain"}
-
-
-def output_times(spacing, t_end):
-    """The runner's output grid: k spacing (k = 1, 2, ...) below t_end, then t_end (bench/lib/trajectory_csv.cpp)."""
-    count = math.floor(t_end / spacing * (1.0 - 1e-12))
-    times = [k * spacing for k in range(1, count + 1)]
-    if not times or times[-1] < t_end:
-        times.append(t_end)
-    return np.array(times)
-
-
-def csv_header(problem):
-    c, d = problem.components, problem.derived_names
-    return ",".join(["t"] + c[12:14] + d[0:6] + c[0:9] + d[6:10])
-
-
-def csv_row(problem, t, y):
-    d = problem.derived(y)
-    values = [t, y[12], y[13], *d[0:6], *y[0:9], *d[6:10]]
-    return ",".join("%.17g" % v for v in values)
 
 
 def measure_rhs_cost(problem, calls):
@@ -115,26 +92,15 @@ def run_one(problem, method, tol, times, repeats, folder, stem):
     rhs_evals, jacobian_evals = problem.counts()
     stages_beyond = problem.stages_beyond
     status, message = failure_of(sol)
-    # every output state through the model's checks, as the suite checks each accepted state
-    rows, checks = [], 1
-    stop_time = float(sol.t[-1])
-    for k in range(outputs.shape[1]):
-        checks += 1
-        verdict, reason = problem.check(outputs[:, k])
-        if verdict != "ok":
-            status, message, stop_time = verdict, f"{reason} (output t = {times[k]:.6g})", float(times[k])
-            break
-        rows.append(csv_row(problem, float(times[k]), outputs[:, k]))
+    rows, checks, status, message, stop_time = peer_file.checked_trajectory(
+        problem, times, outputs, status, message, float(sol.t[-1]))
     wall = []
     for _ in range(repeats):
         start = time.perf_counter()
         solve(problem, method, tol, times)
         wall.append(time.perf_counter() - start)
     problem.reset()
-    path = os.path.join("trajectories", f"{stem}.csv")
-    with open(os.path.join(folder, path), "w") as out:
-        out.write(csv_header(problem) + "\n" + csv_row(problem, 0.0, problem.y0) + "\n")
-        out.writelines(r + "\n" for r in rows)
+    path = peer_file.write_trajectory(problem, folder, stem, rows)
     return {"integrator": name, "family": "scipy", "method": method, "declared_order": order,
             "declared_order_text": order_text, "needs_jacobian": uses_jacobian, "rtol": tol, "atol": tol,
             "status": status, "message": message, "stop_time": stop_time, "trajectory": path,
@@ -150,7 +116,7 @@ def run_peers(library, scenes, methods, tols, t_end, dt_out, repeats, rhs_calls,
     for scene in scenes:
         with problem_lib.Problem(lib, scene, t_end or 0.0) as problem:
             ends.add(problem.t_end)
-            times = output_times(dt_out or ERROR_DT, problem.t_end)
+            times = peer_file.output_times(dt_out or peer_file.ERROR_DT, problem.t_end)
             cost = measure_rhs_cost(problem, rhs_calls)
             cost["scene"] = scene
             costs.append(cost)
@@ -162,14 +128,9 @@ def run_peers(library, scenes, methods, tols, t_end, dt_out, repeats, rhs_calls,
                     runs.append(run)
                     progress(f"scipy_peer: {problem.name} {method} tol {tol:.0e}: {run['status']}, "
                              f"{run['rhs_evals']} rhs, {np.median(run['wall_s']) * 1e3:.1f} ms")
-    peers = {"schema": "rollbench.peers/1", "peer": "scipy",
-             "versions": {"python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__},
-             "library": os.path.abspath(library), "abi_version": problem_lib.ABI_VERSION,
-             "t_end": t_end if t_end else None, "dt_out": dt_out if dt_out else None,
-             "timing": TIMING, "rhs_cost": costs, "runs": runs}
-    path = os.path.join(folder, "peers.json")
-    with open(path, "w") as out:
-        json.dump(peers, out, indent=1)
+    versions = {"python": platform.python_version(), "numpy": np.__version__, "scipy": scipy.__version__}
+    path = peer_file.write_peer_file(folder, "scipy", versions, library, problem_lib.ABI_VERSION, t_end, dt_out, TIMING,
+                                     costs, runs)
     return path
 
 

@@ -153,7 +153,9 @@ json peer_facts(const json& p, const std::string& peer, const json& rhs_cost, co
   for (const char* key : {"method", "declared_order_text", "lu_decompositions", "options"})
     if (p.contains(key)) facts[key] = p[key];
   // what the bare evaluations through the peer's binding cost, for readers to subtract
-  const double rhs_s = rhs_cost.value("python_s_per_call", kNaN), jac_s = rhs_cost.value("jacobian_s_per_call", kNaN);
+  // per call through the peer's interpreter (Python's ctypes wrapper, Octave's oct-file)
+  const double rhs_s = rhs_cost.value("interpreter_s_per_call", rhs_cost.value("python_s_per_call", kNaN));
+  const double jac_s = rhs_cost.value("jacobian_s_per_call", kNaN);
   facts["rhs_cost_s"] = number_or_null(rhs_s * static_cast<double>(r.cost.rhs_evals));
   facts["jacobian_cost_s"] = number_or_null(jac_s * static_cast<double>(r.cost.jacobian_evals));
   return facts;

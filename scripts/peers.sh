@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# SciPy's five solve_ivp methods beside rollbench's own in one report, with
-# its figures (docs/peers.md): a rollbench sweep, the SciPy peer on the same
-# scenes and end time, `rollbench score --peers --into` joining them, and the
-# analysis' plots.
+# The peers beside rollbench's own methods in one report, with its figures
+# (docs/peers.md): a rollbench sweep, SciPy's five solve_ivp methods and GNU
+# Octave's ode45, ode23 and ode15s on the same scenes and end time,
+# `rollbench score --peers --into` joining each, and the analysis' plots.
 #
-#   scripts/scipy_peers.sh [OUT]        (default OUT: out/peers)
+#   scripts/peers.sh [OUT]        (default OUT: out/peers)
 #
+# RB_PEERS (default "scipy,octave"; Octave needs Debian's octave and
+# liboctave-dev, which `scripts/install-deps.sh --tests` installs),
 # RB_PEER_SCENES (default "valley-sideways,chaplygin-valley": a homogeneous
 # ball, and one whose orientation feeds back), RB_PEER_TOLS (1e-3,...,1e-10),
 # RB_PEER_INTEGRATORS (rollbench's methods). The end time is the quick
@@ -29,9 +31,16 @@ mkdir -p "$out"
 scene_args=()
 IFS=, read -ra scene_list <<< "$scenes"
 for s in "${scene_list[@]}"; do scene_args+=(--scene "$s"); done
-"$python" -m analysis.peers.scipy_peer --library "$build/librollbench_problem.so" "${scene_args[@]}" \
-  --t-end "$t_end" --tol "$tols" --out "$out/scipy"
-"$build/rollbench" score --peers "$out/scipy/peers.json" --into "$out/rollbench.json" --cache "$out/cache" \
-  --out "$out/report.json"
+report=$out/rollbench.json
+IFS=, read -ra peer_list <<< "${RB_PEERS:-scipy,octave}"
+for peer in "${peer_list[@]}"; do
+  case "$peer" in scipy|octave) ;; *) echo "peers.sh: unknown peer '$peer' in RB_PEERS (scipy, octave)" >&2; exit 2 ;; esac
+  "$python" -m "analysis.peers.${peer}_peer" --library "$build/librollbench_problem.so" "${scene_args[@]}" \
+    --t-end "$t_end" --tol "$tols" --out "$out/$peer"
+  "$build/rollbench" score --peers "$out/$peer/peers.json" --into "$report" --cache "$out/cache" \
+    --out "$out/with-$peer.json"
+  report=$out/with-$peer.json
+done
+cp "$report" "$out/report.json"
 RB_ROLLBENCH="$build/rollbench" "$python" analysis/plot.py "$out/report.json" --out "$out/plots"
 echo "report: $out/report.json, figures and summary.md: $out/plots"
