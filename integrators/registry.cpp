@@ -13,6 +13,8 @@
 #include "integrators/methods/kutta3.hpp"
 #include "integrators/methods/rk38.hpp"
 #include "integrators/methods/rk4.hpp"
+#include "integrators/methods/verner76.hpp"
+#include "integrators/methods/verner98.hpp"
 #include "integrators/steppers/baselines.hpp"
 #include "integrators/steppers/exp_product.hpp"
 #include "integrators/steppers/explicit_midpoint.hpp"
@@ -62,11 +64,15 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   add(rkmk_method(m::dormand_prince54(), "rkmk-dp54-adaptive", pi));
   add(rkmk_method(m::dormand_prince853(), "rkmk-dp853-adaptive", pi));
   add(rkmk_method(m::fehlberg78(), "rkmk-f78-adaptive", pi));
+  add(rkmk_method(m::verner76(), "rkmk-verner7-adaptive", pi));
+  add(rkmk_method(m::verner98(), "rkmk-verner9-adaptive", pi));
   // their flat twins: the same embedded pair, PI controller and RMS error
   // norm, on the flat view (dp853's stretched estimate has no flat twin)
   add(rk_method(m::bogacki_shampine32(), "rk-bs32-adaptive", pi));
   add(rk_method(m::dormand_prince54(), "rk-dp54-adaptive", pi));
   add(rk_method(m::fehlberg78(), "rk-f78-adaptive", pi));
+  add(rk_method(m::verner76(), "rk-verner7-adaptive", pi));
+  add(rk_method(m::verner98(), "rk-verner9-adaptive", pi));
   add(rk4_projected("rk4-projected", Projection::newton_schulz));
   add(rk4_projected("rk4-projected-svd", Projection::svd));
   add(rk4_quaternion("rk4-quaternion"));
