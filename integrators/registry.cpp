@@ -2,9 +2,11 @@
 
 #include "integrators/controllers/controller.hpp"
 #include "integrators/methods/bogacki_shampine32.hpp"
+#include "integrators/methods/cf3.hpp"
 #include "integrators/methods/cf4.hpp"
 #include "integrators/methods/cg3.hpp"
 #include "integrators/methods/cg4a.hpp"
+#include "integrators/methods/cg5a.hpp"
 #include "integrators/methods/dormand_prince54.hpp"
 #include "integrators/methods/dormand_prince853.hpp"
 #include "integrators/methods/euler.hpp"
@@ -82,9 +84,11 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   // products of exponentials only (exp_product.hpp); the -reversed variants
   // compose every product the other way round (order 2 in R, and where R
   // feeds back in every component); then rkmk4 with the Cayley map
+  add(exp_product_method(m::cf3(), "cf3", constant));
   add(exp_product_method(m::cf4(), "cf4", constant));
   add(exp_product_method(m::cg3(), "cg3", constant));
   add(exp_product_method(m::cg4a(), "cg4a", constant));
+  add(exp_product_method(m::cg5a(), "cg5a", constant));
   add(exp_product_method(reversed(m::cf4()), "cf4-reversed", constant));
   add(exp_product_method(reversed(m::cg3()), "cg3-reversed", constant));
   add(exp_product_method(reversed(m::cg4a()), "cg4a-reversed", constant));
