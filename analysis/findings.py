@@ -5,7 +5,7 @@ flat/Lie pair the flat/Lie time ratio with its spread over the timed
 repeats; then what the order study could and could not decide."""
 import math
 
-from analysis import costs, horizon, pairs, regime
+from analysis import costs, frontier, horizon, pairs, regime
 from analysis import markdown as md
 from analysis import report as rp
 
@@ -152,6 +152,20 @@ def answer_lines(answers):
     return [text, ""]
 
 
+def frontier_lines(report, scenes, metric):
+    """Per scene where R feeds back and target: the best Lie method over the best library method (frontier.py)."""
+    cells = [(scene, target, frontier.frontier(report, scene, metric, target))
+             for scene in scenes if feeds_back(report, scene) for target in costs.TARGETS]
+    cells = [(scene, target, f) for scene, target, f in cells if f is not None]
+    if not cells:
+        return []
+    text = "; ".join(f"{scene} at {target:.0e}: {lie} / {library} {ratio_text(ratio)}"
+                     for scene, target, (lie, library, ratio) in cells)
+    families = ", ".join(frontier.LIBRARY_FAMILIES)
+    return [f"- The Lie frontier where R feeds back (the best Lie method's time over the best library method's, "
+            f"families {families}; below 1 the Lie method is cheaper; the goal is ≤ {frontier.GOAL}): {text}."]
+
+
 def findings_section(report, metric=rp.DEFAULT_METRIC):
     """The findings read the worst error over the run (error_max), whatever the tables read."""
     with rp.errors_read("max"):
@@ -210,6 +224,7 @@ def _findings_section(report, metric=rp.DEFAULT_METRIC):
     if bounded:
         lines.append(f"- Bounds, not counted ({len(bounded)}): " + "; ".join(bounded) + ".")
     lines[2:2] = answer_lines(answers)
+    lines += frontier_lines(report, scenes, metric)
     lines += regime.findings_lines(report, metric) + order_lines(report) + horizon.finding_lines(report) + [""]
     lines += ["### Cheapest method by wall time", ""]
     lines += md.table(["scene", "kind"] + [f"{metric} error {t:.0e}" for t in costs.TARGETS], rows) + [""]
