@@ -12,6 +12,7 @@
 #include "bench/lib/drift.hpp"
 #include "bench/lib/output_file.hpp"
 #include "bench/lib/report.hpp"
+#include "bench/lib/reversibility.hpp"
 #include "bench/lib/score.hpp"
 #include "bench/lib/score_peers.hpp"
 #include "bench/lib/stepper_option.hpp"
@@ -92,6 +93,51 @@ int run_trajectory(const TrajectoryArgs& a) {
                  std::string(rb::status_name(run.status)).c_str(), run.message.c_str());
   }
   return rb::exit_code_of(run.status);
+}
+
+struct ReversibilityArgs {
+  std::string scene, integrators;
+  double h = std::nan(""), tol = std::nan(""), t_end = std::nan("");
+};
+
+// Each method's reversibility defect on one scene (bench/lib/reversibility.hpp).
+int run_reversibility(const ReversibilityArgs& a) {
+  const rb::Scene scene = rb::load_scene(a.scene);
+  if (!std::isnan(a.t_end) && !(a.t_end > 0.0 && std::isfinite(a.t_end)))
+    throw rb::InputError("the end time must be a finite number > 0", "t-end");
+  if (!std::isnan(a.h) && !(a.h > 0.0 && std::isfinite(a.h)))
+    throw rb::InputError("the step must be a finite number > 0", "h");
+  if (!std::isnan(a.tol) && !(a.tol > 0.0 && std::isfinite(a.tol)))
+    throw rb::InputError("the tolerance must be a finite number > 0", "tol");
+  std::vector<const rb::Integrator*> methods;
+  std::stringstream names(a.integrators);
+  for (std::string name; std::getline(names, name, ',');) {
+    const rb::Integrator& m = rb::find_integrator(name);
+    if (!m.adaptive() && std::isnan(a.h)) throw rb::InputError("'" + name + "' is a fixed-step method: give --h", "h");
+    if (m.adaptive() && std::isnan(a.tol)) throw rb::InputError("'" + name + "' is adaptive: give --tol", "tol");
+    methods.push_back(&m);
+  }
+  if (methods.empty()) throw rb::InputError("name at least one method", "integrators");
+  const rb::Problem problem = rb::make_problem(scene);
+  rb::RunOptions options;
+  options.t_end = std::isnan(a.t_end) ? problem.t_end() : a.t_end;
+  std::printf("reversibility defect on %s over [0, %g] and back (contact / r, rotation rad, momentum relative):\n",
+              scene.name.c_str(), options.t_end);
+  std::printf("  %-28s %10s %10s %10s %10s %10s\n", "integrator", "steps", "contact", "rotation", "momentum", "worst");
+  for (const rb::Integrator* m : methods) {
+    rb::RunOptions o = options;
+    if (m->adaptive()) o.rtol = o.atol = a.tol;
+    else o.h = a.h;
+    const rb::ReversibilityDefect d = rb::reversibility_defect(*m, problem, o);
+    if (d.status != rb::Status::ok) {
+      std::printf("  %-28s %10ld %s: %s\n", m->name().c_str(), d.steps, std::string(rb::status_name(d.status)).c_str(),
+                  d.message.c_str());
+      continue;
+    }
+    std::printf("  %-28s %10ld %10.3e %10.3e %10.3e %10.3e\n", m->name().c_str(), d.steps, d.contact, d.rotation,
+                d.momentum, d.worst());
+  }
+  return 0;
 }
 
 struct LandscapeArgs {
@@ -384,6 +430,17 @@ int main(int argc, char** argv) {
   landscape->add_option("--domain", land.domain, "xmin,xmax,ymin,ymax (default: the scene's domain)");
   landscape->add_option("--out", land.out, "write the CSV here instead of standard output");
 
+  ReversibilityArgs rev;
+  CLI::App* reversibility = app.add_subcommand(
+      "reversibility", "each method's reversibility defect: forward to t_end, v -> -v, forward again, v -> -v");
+  reversibility->add_option("scene", rev.scene, "a shipped scene's name or a scene JSON file")->required();
+  reversibility->add_option("--integrators", rev.integrators, "comma-separated registry names")->required();
+  reversibility->add_option("--h", rev.h, "step size of the fixed-step methods");
+  reversibility->add_option("--tol", rev.tol, "tolerance (rtol = atol) of the adaptive methods");
+  reversibility->add_option("--t-end", rev.t_end, "end time of each leg (default: the scene's t_end)");
+  reversibility->add_option("--stepper", steppers, stepper_help);
+  add_tableau_option(reversibility);
+
   RunArgs run;
   CLI::App* run_cmd = app.add_subcommand("run", "sweep scenes x integrators x h or tolerances into a JSON report");
   run_cmd->add_option("--preset", run.preset,
@@ -458,6 +515,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("list")) return run_list();
     if (app.got_subcommand("trajectory")) return run_trajectory(traj);
     if (app.got_subcommand("landscape")) return run_landscape(land);
+    if (app.got_subcommand("reversibility")) return run_reversibility(rev);
     if (app.got_subcommand("run")) return run_sweep_command(run, tableau_methods);
     if (app.got_subcommand("merge")) return run_merge(merge_inputs, merge_out);
     if (app.got_subcommand("score")) return run_score(score);
