@@ -15,7 +15,6 @@ cost of one rhs and one Jacobian call through the oct-file is measured apart
 
     /usr/bin/python3 -m analysis.peers.octave_peer --scene chaplygin-valley --t-end 2 --out out/peers/octave
 """
-import argparse
 import json
 import os
 import shutil
@@ -144,36 +143,8 @@ def run_peers(library, scenes, methods, tols, t_end, dt_out, repeats, rhs_calls,
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--library", default=problem_lib.DEFAULT_LIBRARY, help="librollbench_problem.so")
-    ap.add_argument("--scene", action="append", required=True, help="a shipped scene or a scene file (repeatable)")
-    ap.add_argument("--methods", default=",".join(METHODS), help="comma-separated Octave solvers")
-    ap.add_argument("--tol", default=",".join(f"{t:g}" for t in DEFAULT_TOLS), help="comma-separated tolerances")
-    ap.add_argument("--t-end", type=float, default=0.0, help="end time, as rollbench run --t-end (0: the scene's)")
-    ap.add_argument("--dt-out", type=float, default=0.0, help="output spacing, as rollbench run --dt-out "
-                                                              "(0: the runner's error grid, 0.25)")
-    ap.add_argument("--repeats", type=int, default=3, help="timed solves per run")
-    ap.add_argument("--rhs-calls", type=int, default=2000, help="bare rhs calls timed for rhs_cost")
-    ap.add_argument("--out", required=True, help="folder for peers.json and trajectories/")
-    a = ap.parse_args(argv)
-    methods = a.methods.split(",")
-    unknown = [m for m in methods if m not in METHODS]
-    if unknown:
-        ap.error(f"unknown method {unknown[0]!r}; Octave's are {', '.join(METHODS)}")
-    try:
-        tols = [float(t) for t in a.tol.split(",")]
-    except ValueError:
-        ap.error(f"--tol: expected comma-separated numbers, got {a.tol!r}")
-    if not all(t > 0 for t in tols) or a.repeats < 1 or a.rhs_calls < 1 or a.t_end < 0 or a.dt_out < 0:
-        ap.error("tolerances, --repeats and --rhs-calls must be > 0, --t-end and --dt-out >= 0")
-    try:
-        path = run_peers(a.library, a.scene, methods, tols, a.t_end, a.dt_out, a.repeats, a.rhs_calls, a.out,
-                         progress=lambda line: print(line, file=sys.stderr))
-    except (problem_lib.ProblemError, OctaveError) as e:
-        print(f"octave_peer: {e}", file=sys.stderr)
-        return 2
-    print(f"peer file written to {path}")
-    return 0
+    return peer_file.main(argv, __doc__, "octave_peer", METHODS, "Octave's", DEFAULT_TOLS, 2000, run_peers,
+                          (problem_lib.ProblemError, OctaveError))
 
 
 if __name__ == "__main__":

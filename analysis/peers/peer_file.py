@@ -64,3 +64,44 @@ def write_peer_file(folder, peer, versions, library, abi_version, t_end, dt_out,
     with open(path, "w") as out:
         json.dump(peers, out, indent=1)
     return path
+
+
+def main(argv, doc, peer, methods, owner, default_tols, rhs_calls, run_peers, errors):
+    """A peer's command line (its module's main): parse and check the arguments, run the peer, exit status.
+
+    methods: the peer's solvers by name; owner: whose they are, for an unknown one ("solve_ivp's", "Octave's");
+    errors: the exceptions that are bad input (exit 2 with the message)."""
+    import argparse
+    import sys
+    from analysis.peers import problem_lib
+
+    ap = argparse.ArgumentParser(description=doc.split("\n\n")[0])
+    ap.add_argument("--library", default=problem_lib.DEFAULT_LIBRARY, help="librollbench_problem.so")
+    ap.add_argument("--scene", action="append", required=True, help="a shipped scene or a scene file (repeatable)")
+    ap.add_argument("--methods", default=",".join(methods), help="comma-separated solver names")
+    ap.add_argument("--tol", default=",".join(f"{t:g}" for t in default_tols), help="comma-separated tolerances")
+    ap.add_argument("--t-end", type=float, default=0.0, help="end time, as rollbench run --t-end (0: the scene's)")
+    ap.add_argument("--dt-out", type=float, default=0.0, help="output spacing, as rollbench run --dt-out "
+                                                              "(0: the runner's error grid, 0.25)")
+    ap.add_argument("--repeats", type=int, default=3, help="timed solves per run")
+    ap.add_argument("--rhs-calls", type=int, default=rhs_calls, help="bare rhs calls timed for rhs_cost")
+    ap.add_argument("--out", required=True, help="folder for peers.json and trajectories/")
+    a = ap.parse_args(argv)
+    chosen = a.methods.split(",")
+    unknown = [m for m in chosen if m not in methods]
+    if unknown:
+        ap.error(f"unknown method {unknown[0]!r}; {owner} are {', '.join(methods)}")
+    try:
+        tols = [float(t) for t in a.tol.split(",")]
+    except ValueError:
+        ap.error(f"--tol: expected comma-separated numbers, got {a.tol!r}")
+    if not all(t > 0 for t in tols) or a.repeats < 1 or a.rhs_calls < 1 or a.t_end < 0 or a.dt_out < 0:
+        ap.error("tolerances, --repeats and --rhs-calls must be > 0, --t-end and --dt-out >= 0")
+    try:
+        path = run_peers(a.library, a.scene, chosen, tols, a.t_end, a.dt_out, a.repeats, a.rhs_calls, a.out,
+                         progress=lambda line: print(line, file=sys.stderr))
+    except errors as e:
+        print(f"{peer}: {e}", file=sys.stderr)
+        return 2
+    print(f"peer file written to {path}")
+    return 0
