@@ -93,6 +93,7 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   add(exp_product_method(reversed(m::cg3()), "cg3-reversed", constant));
   add(exp_product_method(reversed(m::cg4a()), "cg4a-reversed", constant));
   add(exp_product_method(m::cg3_pair(), "cg3-adaptive", pi));
+  add(exp_product_method(m::cf4_pair(), "cf4-adaptive", pi));
   add(rkmk_cayley_method(m::rk4(), "rkmk4-cayley", constant));
   // --- end commutator-free and Crouch-Grossman ---
 

@@ -35,5 +35,27 @@ inline ExpProductScheme cf4() {
   return s;
 }
 
+// order 4 with an embedded order-3 update (cf4-adaptive). The embedded
+// update needs a fifth stage, F_5 = F(y_1) at the new state (c_5 = 1, its
+// orientation cf4's update): on the classical side b^ = (1/6, 1/3, 1/3,
+// 1/6 - g, g) with stage 5's row = b meets every order-3 condition for any g
+// and misses order 4's sum b^ A c^2 = 1/12 by g/12, so the estimate is
+// O(h^4); split as exp(h beta.F) exp(h alpha.F) with alpha cf4's first
+// exponent, its commutator term h^3 (sum beta c sum alpha - sum beta sum
+// alpha c) [omega_1, omega_0] / 2 = h^3 [omega_1, omega_0] / 12 is the Magnus
+// term, the one Lie condition of order 3. g = 1/6 (b^_4 = 0). Derived here
+// in the way of Celledoni, Marthinsen and Owren's methods; checked in
+// test_cf_cg_adaptive.cpp (the embedded update read as a method of its own:
+// order 3 where R feeds back).
+inline ExpProductScheme cf4_pair() {
+  ExpProductScheme s = cf4();
+  const double g = 1.0 / 6;
+  s.stages.push_back(s.update);  // F_5 at y_1
+  s.embedded = {{3.0 / 12, 2.0 / 12, 2.0 / 12, -1.0 / 12, 0.0}, {-1.0 / 12, 2.0 / 12, 2.0 / 12, 3.0 / 12 - g, g}};
+  s.embedded_order = 3;
+  s.source += "; embedded order-3 update on an extra stage at y_1 (rollbench, docs/integrators.md)";
+  return s;
+}
+
 }  // namespace rb::methods
 // clang-format on

@@ -8,11 +8,14 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "integrators/controllers/controller.hpp"
+#include "integrators/methods/cf4.hpp"
 #include "integrators/methods/cg3.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/steppers/exp_product.hpp"
 #include "problems/scene.hpp"
 #include "problems/so3.hpp"
+#include "tests/integrators/convergence.hpp"
 #include "tests/integrators/fixtures.hpp"
 
 namespace rb {
@@ -57,6 +60,55 @@ TEST(CgAdaptive, EmbeddedWeightsHaveOrderTwoAndNotThree) {
   EXPECT_NEAR(moment(low, 2), 229.0 / 384, 1e-14);  // not 1/3: the estimate is O(h^3)
   EXPECT_EQ(s.embedded_order, 2);
   EXPECT_EQ(s.order, 3);
+}
+
+// cf4_pair's embedded update as a method of its own (5 stages, fixed step),
+// the order its comment derives; with its two exponentials the other way
+// round the commutator term has the wrong sign and R loses an order
+std::unique_ptr<Integrator> cf4_embedded(bool reversed_exponentials) {
+  ExpProductScheme low = methods::cf4_pair();
+  low.update = low.embedded;
+  if (reversed_exponentials) std::swap(low.update[0], low.update[1]);
+  low.order = 3;
+  low.embedded.clear();
+  low.embedded_order = 0;
+  low.name = "cf4-embedded";
+  return exp_product_method(low, low.name, kConstantController);
+}
+
+TEST(CfAdaptive, Cf4sEmbeddedUpdateHasOrderThreeWhereRFeedsBack) {
+  const Problem& p = scene("chaplygin-valley");
+  RunOptions fine;
+  fine.t_end = 1.0;
+  fine.h = 5e-5;
+  const FlatState ref = find_integrator("rkmk4").integrate(p, fine).final_state;
+  const testing::Convergence c = testing::measure_convergence(*cf4_embedded(false), p, 1.0, ref);
+  ASSERT_GE(c.contact_fit.points, 3);
+  EXPECT_NEAR(c.contact_fit.slope, 3.0, 0.25);
+  EXPECT_NEAR(c.omega_fit.slope, 3.0, 0.25);
+  EXPECT_NEAR(c.rotation_fit.slope, 3.0, 0.25);
+  const testing::Convergence wrong = testing::measure_convergence(*cf4_embedded(true), p, 1.0, ref);
+  EXPECT_NEAR(wrong.rotation_fit.slope, 2.0, 0.25);
+}
+
+TEST(CfAdaptive, RegisteredWithAnExtraStageAndErrorFallingWithTheTolerance) {
+  const Integrator& m = find_integrator("cf4-adaptive");
+  EXPECT_TRUE(m.adaptive());
+  EXPECT_EQ(m.declared_order(), 4);
+  const Problem& p = scene("chaplygin-valley");
+  RunOptions fine;
+  fine.t_end = 1.0;
+  fine.h = 5e-5;
+  const FlatState ref = find_integrator("rkmk4").integrate(p, fine).final_state;
+  double previous = 1.0;
+  for (double tol : {1e-5, 1e-7, 1e-9}) {
+    const RunResult run = m.integrate(p, tolerance(tol, 1.0, 1.0));
+    ASSERT_EQ(run.status, Status::ok) << run.message;
+    const double error = (run.final_state - ref).cwiseAbs().maxCoeff();
+    EXPECT_LT(error, 100 * tol) << tol;
+    EXPECT_LT(error, previous) << tol;
+    previous = error;
+  }
 }
 
 TEST(CgAdaptive, RegisteredAsAdaptiveCrouchGrossman) {
