@@ -26,6 +26,7 @@
 #include <cstring>
 #include <map>
 #include <mutex>
+#include <string_view>
 #include <vector>
 
 #include "problems/formula.hpp"
@@ -60,11 +61,25 @@ std::string hex(std::uint64_t v) {
 
 // Runs argv (no shell) with stdin and stderr on /dev/null and stdout into
 // *out through a pipe (or /dev/null); the exit status, or -1 if it could not
-// start.
-int run_process(const std::vector<std::string>& args, std::string* out = nullptr) {
+// start. A temp_folder becomes the child's TMPDIR (TMP and TEMP too), so
+// that what the compiler makes for itself (cc1's assembly, as's object,
+// under names it opens again) goes there, not into a shared $TMPDIR.
+int run_process(const std::vector<std::string>& args, std::string* out = nullptr, const std::string& temp_folder = "") {
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
+  std::vector<std::string> own_environment;
+  std::vector<char*> envp;
+  if (!temp_folder.empty()) {
+    for (char** e = environ; *e; ++e) {
+      const std::string_view entry(*e);
+      if (!entry.starts_with("TMPDIR=") && !entry.starts_with("TMP=") && !entry.starts_with("TEMP="))
+        envp.push_back(*e);
+    }
+    for (const char* key : {"TMPDIR=", "TMP=", "TEMP="}) own_environment.push_back(key + temp_folder);
+    for (std::string& entry : own_environment) envp.push_back(entry.data());
+    envp.push_back(nullptr);
+  }
   int ends[2] = {-1, -1};
   if (out && pipe2(ends, O_CLOEXEC) != 0) return -1;
   const UniqueFd read_end(ends[0]);
@@ -76,7 +91,7 @@ int run_process(const std::vector<std::string>& args, std::string* out = nullptr
   else posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
   posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
   pid_t pid = 0;
-  const int started = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  const int started = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), envp.empty() ? environ : envp.data());
   posix_spawn_file_actions_destroy(&actions);
   write_end = UniqueFd();  // the child holds its copy: EOF when it exits
   if (started != 0) return -1;
@@ -118,7 +133,8 @@ std::string build_entry(const CacheFolder& folder, const std::string& name, cons
     std::vector<std::string> args = {compiler};
     args.insert(args.end(), kFlags.begin(), kFlags.end());
     args.insert(args.end(), {"-o", child_path(*work, "formula.so"), child_path(*work, c_file.name), "-lm"});
-    if (run_process(args) != 0 || !read_own_output(*work, "formula.so", object)) object.clear();
+    if (run_process(args, nullptr, child_path(*work, ".")) != 0 || !read_own_output(*work, "formula.so", object))
+      object.clear();
   }
   if (!c_file.name.empty()) ::unlinkat(work->fd.get(), c_file.name.c_str(), 0);
   ::unlinkat(work->fd.get(), "formula.so", 0);

@@ -10,7 +10,9 @@
 #include <cstring>
 #include <filesystem>
 
+#include "bench/lib/temporary_registry.hpp"
 #include "problems/input_error.hpp"
+#include "problems/native_cache.hpp"
 
 namespace rb {
 
@@ -20,23 +22,23 @@ std::atomic<unsigned long> temporary_counter{0};
 
 // ".NAME.tmp.PID.N.T" in the target's folder: unique per process and call,
 // hidden, and on the same file system so that rename is atomic.
-std::string temporary_name(const std::string& path) {
-  const std::filesystem::path p(path);
+std::string temporary_name(const std::string& name) {
   const auto nanoseconds = std::chrono::steady_clock::now().time_since_epoch().count();
   // appended piece by piece: "." + std::string(...) trips GCC 12's false -Wrestrict
-  std::string name = ".";
-  name += p.filename().string();
-  name += ".tmp." + std::to_string(::getpid()) + "." + std::to_string(temporary_counter++) + "." +
-          std::to_string(nanoseconds % 1000000007);
-  return (p.parent_path() / name).string();
+  std::string temporary = ".";
+  temporary += name;
+  temporary += ".tmp." + std::to_string(::getpid()) + "." + std::to_string(temporary_counter++) + "." +
+               std::to_string(nanoseconds % 1000000007);
+  return temporary;
 }
 
-// What the target is when it exists and is not a regular file, after
-// following a symlink (lstat, then stat): "" for none or a regular file.
-std::string non_regular_kind(const std::string& path) {
+// What name in the folder is when it exists and is not a regular file,
+// after following a symlink (fstatat without, then with): "" for none or a
+// regular file.
+std::string non_regular_kind(int folder, const std::string& name) {
   struct stat st {};
-  if (::lstat(path.c_str(), &st) != 0) return "";
-  if (S_ISLNK(st.st_mode) && ::stat(path.c_str(), &st) != 0) return "";  // a dangling link: replaced
+  if (::fstatat(folder, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0) return "";
+  if (S_ISLNK(st.st_mode) && ::fstatat(folder, name.c_str(), &st, 0) != 0) return "";  // a dangling link: replaced
   if (S_ISREG(st.st_mode)) return "";
   if (S_ISFIFO(st.st_mode)) return "a FIFO";
   if (S_ISDIR(st.st_mode)) return "a folder";
@@ -48,17 +50,40 @@ std::string non_regular_kind(const std::string& path) {
 }  // namespace
 
 OutputFile::OutputFile(std::string path, std::string option) : path_(std::move(path)), option_(std::move(option)) {
-  const auto refuse = [&] { throw InputError("cannot open '" + path_ + "' for writing", option_); };
+  const auto refuse = [&](const std::string& why = "") {
+    throw InputError("cannot open '" + path_ + "' for writing" + (why.empty() ? "" : " (" + why + ")"), option_);
+  };
   if (path_.empty() || path_.back() == '/') refuse();
+  const std::filesystem::path p(path_);
+  name_ = p.filename().string();
+  if (name_ == "." || name_ == "..") refuse();
+  std::string folder = p.parent_path().string();
+  while (folder.size() > 1 && folder.back() == '/') folder.pop_back();  // a trailing '/' would follow a link
+  // push_back, not = ".": GCC 12 warns falsely (-Wrestrict)
+  if (folder.empty()) folder.push_back('.');
+  // everything below goes through this descriptor: a folder renamed or
+  // replaced by a link after this open is never written into
+  folder_fd_ = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (folder_fd_ < 0) {
+    struct stat st {};
+    const bool link = ::lstat(folder.c_str(), &st) == 0 && S_ISLNK(st.st_mode);
+    refuse(link ? "its folder '" + folder + "' is a symbolic link" : "");
+  }
   // only regular files are written: never a FIFO (open would hang with no
   // reader), a device or what a planted symlink points at
-  if (const std::string kind = non_regular_kind(path_); !kind.empty())
+  if (const std::string kind = non_regular_kind(folder_fd_, name_); !kind.empty())
     throw InputError("'" + path_ + "' exists and is " + kind + "; outputs are written only to regular files", option_);
   for (int attempt = 0; attempt < 100 && fd_ < 0; ++attempt) {
-    temporary_ = temporary_name(path_);
+    temporary_ = temporary_name(name_);
+    // registered before it exists, so that no signal finds it unnamed
+    slot_ = register_temporary(folder_fd_, temporary_.c_str());
     // 0666 less the umask: the mode a plain open would give the file
-    fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
-    if (fd_ < 0 && errno != EEXIST) break;
+    fd_ = ::openat(folder_fd_, temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd_ >= 0) break;
+    const int error = errno;
+    unregister_temporary(slot_);
+    slot_ = -1;
+    if (error != EEXIST) break;
   }
   if (fd_ < 0) {
     temporary_.clear();
@@ -68,7 +93,9 @@ OutputFile::OutputFile(std::string path, std::string option) : path_(std::move(p
 
 OutputFile::~OutputFile() {
   if (fd_ >= 0) ::close(fd_);
-  if (!committed_ && !temporary_.empty()) ::unlink(temporary_.c_str());
+  if (!committed_ && !temporary_.empty()) ::unlinkat(folder_fd_, temporary_.c_str(), 0);
+  unregister_temporary(slot_);  // before the descriptor the table names is closed
+  if (folder_fd_ >= 0) ::close(folder_fd_);
 }
 
 void OutputFile::commit() {
@@ -76,29 +103,21 @@ void OutputFile::commit() {
     throw InputError("could not write '" + path_ + "' (" + what + ": " + std::strerror(errno) + ")", option_);
   };
   const std::string text = buffer_.str();
-  for (std::size_t written = 0; written < text.size();) {
-    const ssize_t n = ::write(fd_, text.data() + written, text.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) fail("write");
-    written += static_cast<std::size_t>(n);
-  }
+  if (!write_all(fd_, text)) fail("write");
   if (::fsync(fd_) != 0) fail("fsync");  // the bytes on disk before the name points at them
   const int fd = fd_;
   fd_ = -1;
   if (::close(fd) != 0) fail("close");
   // the target may have become something else since it was checked
-  if (const std::string kind = non_regular_kind(path_); !kind.empty()) {
+  if (const std::string kind = non_regular_kind(folder_fd_, name_); !kind.empty()) {
     errno = EEXIST;
     fail(("the target became " + kind).c_str());
   }
-  if (::rename(temporary_.c_str(), path_.c_str()) != 0) fail("rename");
+  if (::renameat(folder_fd_, temporary_.c_str(), folder_fd_, name_.c_str()) != 0) fail("rename");
   committed_ = true;
-  std::string folder = std::filesystem::path(path_).parent_path().string();
-  if (folder.empty()) folder = ".";
-  if (const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dir >= 0) {
-    ::fsync(dir);  // the rename itself on disk
-    ::close(dir);
-  }
+  unregister_temporary(slot_);
+  slot_ = -1;
+  ::fsync(folder_fd_);  // the rename itself on disk
 }
 
 void write_output_file(const std::string& path, const std::string& text, const std::string& option) {

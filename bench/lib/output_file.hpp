@@ -4,9 +4,14 @@
 // to a new file next to the target (opened O_CREAT | O_EXCL | O_NOFOLLOW
 // under a unique name) and commit() renames it onto the target. A run that
 // fails before commit leaves an existing file as it was and no partial one:
-// the temporary file is removed. The temporary is fsync'ed before the rename
-// and the folder after it. A target that exists and is not a regular file
-// (a FIFO, a device, a folder, or a symlink to one) is refused with an
+// the temporary file is removed, also on SIGINT, SIGTERM or SIGHUP
+// (bench/lib/temporary_registry.hpp). The temporary is fsync'ed before the
+// rename and the folder after it. The target's folder is opened once
+// (O_DIRECTORY | O_NOFOLLOW: a folder that is a symlink is refused) and the
+// temporary, the checks and the rename go through that descriptor (openat,
+// fstatat, renameat), with the target's last component as the name: nothing
+// is created outside the folder. A target that exists and is not a regular
+// file (a FIFO, a device, a folder, or a symlink to one) is refused with an
 // InputError naming the path: output goes only to regular files.
 #include <sstream>
 #include <string>
@@ -29,8 +34,9 @@ class OutputFile {
   void commit();
 
  private:
-  std::string path_, option_, temporary_;
-  int fd_ = -1;
+  std::string path_, option_, name_, temporary_;
+  int folder_fd_ = -1, fd_ = -1;
+  int slot_ = -1;  // in the signal handler's table
   bool committed_ = false;
   std::ostringstream buffer_;
 };

@@ -115,5 +115,38 @@ TEST(OutputFile, ALinkToARegularFileIsReplacedNotFollowed) {
   EXPECT_EQ(read(link), "new");
 }
 
+// issue 32, item 1: the file is made relative to its folder's descriptor,
+// opened without following a link. A folder that is a symlink is refused;
+// "." and ".." are no file names; a folder swapped for a link to another
+// after the open is never written through: the file lands in the folder
+// that was opened.
+TEST(OutputFile, TheFolderIsOpenedOnceAndNeverFollowed) {
+  Folder folder;
+  const fs::path real = folder.path / "real", link = folder.path / "link";
+  fs::create_directories(real);
+  fs::create_symlink(real, link);
+  for (const std::string& bad : {(link / "x.csv").string(), (real / "..").string(), (real / ".").string()}) {
+    try {
+      OutputFile file(bad, "out");
+      ADD_FAILURE() << bad << " was taken";
+    } catch (const InputError& e) {
+      const std::string why =
+          bad.starts_with(link.string()) ? " (its folder '" + link.string() + "' is a symbolic link)" : "";
+      EXPECT_EQ(std::string(e.what()), "'out': cannot open '" + bad + "' for writing" + why);
+    }
+  }
+  EXPECT_TRUE(fs::is_empty(real));
+
+  const fs::path moved = folder.path / "moved", elsewhere = folder.path / "elsewhere";
+  fs::create_directories(elsewhere);
+  OutputFile file((real / "x.csv").string(), "out");
+  file.stream() << "data";
+  fs::rename(real, moved);
+  fs::create_symlink(elsewhere, real);
+  file.commit();
+  EXPECT_EQ(read(moved / "x.csv"), "data");
+  EXPECT_TRUE(fs::is_empty(elsewhere));
+}
+
 }  // namespace
 }  // namespace rb

@@ -2,9 +2,13 @@
 // lives in its child process entirely (integrators/steppers/isolated_run.hpp)
 // and none of them takes rollbench down, hangs it, floods its memory, runs
 // its atexit handlers or leaves a process behind.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <stdlib.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
@@ -75,6 +79,30 @@ TEST(PluginAttacks, APluginWriting400MibIsKilledAtTheAnswerLimit) {
   EXPECT_EQ(o.err,
             "rollbench: run stopped early at t = 0: crashed: stepper 'flood-stepper' crashed: its process sent more "
             "than 134217728 bytes (the limit of an answer) and was killed; its state and cost are lost\n");
+}
+
+// 42e9db5 read the pipe without a limit: 541 MB for a 400 MiB write. The
+// largest resident size of rollbench and what it waited for (wait4) stays
+// below 300 MiB: the answer limit (128 MiB) and the program itself.
+TEST(PluginAttacks, APluginWriting400MibLeavesTheParentsMemoryBounded) {
+  const std::string csv = cli_temp_file("flood-rss.csv").string(), library = example_stepper("flood_stepper");
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1);
+    ::dup2(null, 2);
+    ::execl(RB_ROLLBENCH_EXE, RB_ROLLBENCH_EXE, "trajectory", "valley-sideways", "--integrator", "flood-stepper", "--h",
+            "0.0625", "--stepper-timeout", "20", "--out", csv.c_str(), "--stepper", library.c_str(),
+            static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  int status = 0;
+  struct rusage usage {};
+  ASSERT_EQ(::wait4(pid, &status, 0, &usage), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 3);  // the run stopped: crashed
+  EXPECT_LT(usage.ru_maxrss, 300L * 1024) << "KiB";
 }
 
 TEST(PluginAttacks, APluginCallingExitLeavesWithoutTheParentsAtexitHandlers) {

@@ -3,6 +3,7 @@
 // rebuilds corrupted, truncated and stale entries instead of loading them,
 // and without a compiler the tape runs.
 #include <gtest/gtest.h>
+#include <sys/inotify.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -154,6 +156,50 @@ TEST(FormulaNative, BuildsOnceThenLoadsFromTheCache) {
   Formula again = Formula::parse("0.25*cos(x)*y^2");
   EXPECT_EQ(again.compile_native(cache.settings()), NativeOutcome::cached);
   EXPECT_TRUE(again.is_native());
+}
+
+// Names created in folder (watched by inotify) while run runs; the watch
+// itself is checked by a file of the test's own made afterwards.
+std::vector<std::string> names_created_during(const fs::path& folder, const std::function<void()>& run) {
+  const int watch = inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
+  EXPECT_GE(watch, 0);
+  EXPECT_GE(inotify_add_watch(watch, folder.c_str(), IN_CREATE | IN_MOVED_TO), 0);
+  run();
+  std::ofstream(folder / "made-by-the-test") << "x";
+  std::vector<std::string> names;
+  alignas(inotify_event) char buf[8192];
+  for (ssize_t got; (got = ::read(watch, buf, sizeof buf)) > 0;)
+    for (char* at = buf; at < buf + got;) {
+      const auto* event = reinterpret_cast<const inotify_event*>(at);
+      if (event->len > 0) names.emplace_back(event->name);
+      at += sizeof(inotify_event) + event->len;
+    }
+  ::close(watch);
+  return names;
+}
+
+// issue 32: the compiler's own temporaries (cc1's assembly, as's object,
+// under names it opens again) go to the private work folder, not $TMPDIR:
+// with TMPDIR at a fresh folder, a build creates nothing there.
+TEST(FormulaNative, TheCompilersTemporariesStayInThePrivateWorkFolder) {
+  SKIP_IF_SWITCHED_OFF();
+  const TempCache cache("tmpdir");
+  const fs::path tmpdir = fs::temp_directory_path() / ("rb_watched_tmpdir_" + std::to_string(getpid()));
+  fs::remove_all(tmpdir);
+  fs::create_directories(tmpdir);
+  const char* old = std::getenv("TMPDIR");
+  const std::string kept = old ? old : "";
+  ::setenv("TMPDIR", tmpdir.c_str(), 1);
+  NativeOutcome outcome = NativeOutcome::unavailable;
+  const std::vector<std::string> names = names_created_during(tmpdir, [&] {
+    Formula f = Formula::parse("0.5*sin(x)*cos(y)^3 + 0.125*x*y");
+    outcome = f.compile_native(cache.settings());
+  });
+  if (old) ::setenv("TMPDIR", kept.c_str(), 1);
+  else ::unsetenv("TMPDIR");
+  fs::remove_all(tmpdir);
+  EXPECT_EQ(outcome, NativeOutcome::built);  // the compiler ran
+  EXPECT_EQ(names, std::vector<std::string>{"made-by-the-test"});
 }
 
 // a broken entry in place of a good one: rebuilt, never loaded (want:

@@ -1,0 +1,68 @@
+// issue 32, item 2: a SIGINT, SIGTERM or SIGHUP that ends rollbench while it
+// writes an output removes the temporary beside the target
+// (bench/lib/temporary_registry.hpp), and the process still ends by that
+// signal. (SIGKILL cannot be caught: docs/formats.md names what it leaves.)
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace rb {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> names_in(const fs::path& folder) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(folder)) names.push_back(e.path().filename().string());
+  return names;
+}
+
+bool has_temporary(const fs::path& folder) {
+  for (const std::string& name : names_in(folder))
+    if (name.starts_with(".traj.csv.tmp.")) return true;
+  return false;
+}
+
+TEST(OutputSignals, ASignalRemovesTheTemporaryAndEndsTheProcessByIt) {
+  const fs::path folder = fs::temp_directory_path() / ("rb-output-signals-" + std::to_string(::getpid()));
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  const fs::path scene = folder / "long.json";
+  // ten million steps of rk4 (seconds): the test signals as soon as the temporary appears
+  std::ofstream(scene) << R"js({"name": "long", "landscape": "0.1*(x^2 + y^2)", "t_end": 1000,
+    "ball": {"radius": 0.1, "mass": 1}, "start": {"contact": [0.3, 0.0], "omega": [0, 0, 0]}})js";
+  for (const int signal_number : {SIGTERM, SIGINT, SIGHUP}) {
+    const std::string out = (folder / "traj.csv").string();
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      for (const int s : {SIGTERM, SIGINT, SIGHUP}) ::signal(s, SIG_DFL);  // as a shell starts it
+      ::execl(RB_ROLLBENCH_EXE, RB_ROLLBENCH_EXE, "trajectory", scene.c_str(), "--integrator", "rk4", "--h", "1e-4",
+              "--out", out.c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    // the temporary exists from before the first step until the commit
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (!has_temporary(folder) && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    EXPECT_TRUE(has_temporary(folder)) << "no temporary appeared";
+    ::kill(pid, signal_number);
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal_number) << "status " << status;
+    EXPECT_EQ(names_in(folder), std::vector<std::string>{"long.json"}) << strsignal(signal_number);
+  }
+  fs::remove_all(folder);
+}
+
+}  // namespace
+}  // namespace rb
