@@ -252,7 +252,7 @@ def finding_lines(report):
         shared = [shown_name(entries, r, key) for key in ("energy_error",) for r in done
                   if not same_as(r, key) and " = " in shown_name(entries, r, key)]
         if shared:
-            parts.append("identical energy series (the same tableau on (v, α)): " + "; ".join(shared))
+            parts.append("identical energy series (one tableau stepping (v, α)): " + "; ".join(shared))
         lines.append(f"- Long horizon on {scene} ({kind(first)}, {count_text(first.get('steps_planned'))} steps of "
                      f"h = {rp.num(first.get('h')):g} s): " + ("; ".join(parts) or "no run reached the end") + ".")
     return lines

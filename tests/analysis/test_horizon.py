@@ -175,7 +175,7 @@ class HorizonFromAHandMadeReport(unittest.TestCase):
         # its energy once in the p range and once in the identical-series note; its own defect at rounding
         self.assertEqual(line.count("rk4-projected"), 3)
         self.assertEqual(line.count("rk4 = rk4-projected"), 2)
-        self.assertIn("identical energy series (the same tableau on (v, α)): rk4 = rk4-projected", line)
+        self.assertIn("identical energy series (one tableau stepping (v, α)): rk4 = rk4-projected", line)
         rows = {(r[0], r[2]): r for r in md.parse_table(self.markdown, horizon.HEADING)}
         self.assertEqual(rows[("bumpy-long", "rk4-projected")][12], "energy: rk4")
         self.assertEqual(rows[("bumpy-long", "rk4")][12], "—")
