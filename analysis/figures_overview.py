@@ -49,9 +49,14 @@ def _largest_stable_panel(ax, entries, palette):
     ax.set_ylim(len(names) - 0.5, -0.5)
     ax.set_xlabel("largest stable step h (s): it and every smaller tested step pass")
     ax.grid(True, axis="x", which="major", alpha=0.3)
-    thresholds = (entries[0].get("thresholds") or {})
-    detail = ", ".join(f"{k} ≤ {v:g}" for k, v in thresholds.items() if isinstance(v, (int, float)))
-    ax.set_title("largest stable step per method and scene" + (f"\n(finite, {detail})" if detail else "")
+    bounds = entries[0].get("thresholds") or {}
+    horizon = rp.num(entries[0].get("horizon"))
+    parts = [f"to t = {horizon:g} s" if math.isfinite(horizon) else "",
+             f"energy error ≤ {rp.num(bounds.get('energy')):g} of the scale" if "energy" in bounds else "",
+             f"‖RᵀR − I‖ ≤ {rp.num(bounds.get('rotation_defect')):g}" if "rotation_defect" in bounds else "",
+             "no exponential growth" if "growth_exponent" in bounds else ""]
+    detail = ", ".join(p for p in parts if p)
+    ax.set_title("largest stable step per method and scene" + (f"\n(no stop, {detail})" if detail else "")
                  + "\nrotation defect there: summary.md", fontsize=10)
     ax.text(none_x, -0.6, "none", ha="center", va="bottom", fontsize=7, color="#666666")
 

@@ -1,8 +1,11 @@
 """The horizon study (docs/usage.md#the-horizon-study): horizon-<scene>.png,
-the energy error and the rotation defect (the largest so far) against t on
-log-log axes with the runner's fitted growth exponent p of err ~ C t^p in
-the legend; the "Long horizons" section of summary.md and its line in the
-findings."""
+the energy error and the rotation defect (their envelope: the largest in
+each log-spaced window) against t on log-log axes with the runner's fitted
+growth exponent p of err ~ C t^p in the legend; the "Long horizons" section
+of summary.md and its line in the findings. A fit whose early and late
+halves disagree (the report's `asymptotic`) reads "not yet asymptotic
+(early → late)" instead of one p; a series the report marks the same as an
+earlier run's (`same_as`) is drawn and stated once, under both names."""
 import math
 
 import numpy as np
@@ -13,8 +16,8 @@ from analysis import report as rp
 
 HEADING = "## Long horizons"
 # (key in a run and in its fit, axis label, short name)
-SERIES = (("energy_error", "energy error max$_{[0,t]}$|H − H$_0$| (J)", "energy error"),
-          ("rotation_defect", "rotation defect max$_{[0,t]}$‖R$^T$R − I‖$_F$", "rotation defect"))
+SERIES = (("energy_error", "energy error |H − H$_0$| (J), largest per window", "energy error"),
+          ("rotation_defect", "rotation defect ‖R$^T$R − I‖$_F$, largest per window", "rotation defect"))
 WINDOW_COLOUR = "#eeeeee"
 
 
@@ -31,13 +34,32 @@ def fit_of(run, key):
     return (run.get("fit") or {}).get(key) or {}
 
 
+def not_asymptotic(fit):
+    """A fit above rounding whose early and late halves disagree (the report's `asymptotic` is false)."""
+    return (math.isfinite(rp.num(fit.get("p"))) and fit.get("asymptotic") is False
+            and not fit.get("at_rounding"))
+
+
 def exponent_text(fit):
-    """'1.02 ± 0.02', '0.45 ± 0.06 (rounding)', or '—'."""
+    """'1.02 ± 0.02', '0.45 ± 0.06 (rounding)', 'not yet asymptotic (0.30 → 0.63)', or '—'."""
     p, ci = rp.num(fit.get("p")), rp.num(fit.get("ci95"))
     if not math.isfinite(p):
         return "—"
+    if not_asymptotic(fit):
+        return f"not yet asymptotic ({halves_text(fit)})"
     text = f"{p:.2f} ± {ci:.2f}" if math.isfinite(ci) else f"{p:.2f}"
     return text + (" (rounding)" if fit.get("at_rounding") else "")
+
+
+def same_as(run, key):
+    """The integrator whose series this run's equals (the report's `same_as`), or None."""
+    return (run.get("same_as") or {}).get(key)
+
+
+def shown_name(entries, run, key):
+    """'rk4 = rkmk4 = cf4' for a run whose series others share, else its name."""
+    twins = [r["integrator"] for r in entries if same_as(r, key) == run["integrator"]]
+    return " = ".join([run["integrator"]] + twins)
 
 
 def halves_text(fit):
@@ -56,19 +78,23 @@ def kind(run):
     return "R feeds back" if run.get("r_feeds_back") else "homogeneous"
 
 
-def _legend_label(run, key):
+def _legend_label(entries, run, key):
     status = run.get("status", "ok")
     if status != "ok":
         return f"{run['integrator']}: {status} at t = {rp.num(run.get('stop_time')):.3g}"
-    return f"{run['integrator']}: p = {exponent_text(fit_of(run, key))}"
+    fit = fit_of(run, key)
+    text = exponent_text(fit)
+    return f"{shown_name(entries, run, key)}: " + (text if not_asymptotic(fit) else f"p = {text}")
 
 
 def _panel(ax, entries, key, label, short, palette):
     window = None
     for r in entries:
+        if same_as(r, key):
+            continue  # drawn once, under the first run's line
         t, y = figures.positive(r.get("t") or [], r.get(key) or [])
         style = palette.style(r["integrator"])
-        ax.plot(t, y, label=_legend_label(r, key), markersize=3, linewidth=1.2, markevery=max(1, t.size // 8),
+        ax.plot(t, y, label=_legend_label(entries, r, key), markersize=3, linewidth=1.2, markevery=max(1, t.size // 8),
                 **style)
         if r.get("status", "ok") != "ok" and t.size:
             ax.plot(t[-1], y[-1], marker="x", color="black", markersize=8, label="_stop")
@@ -132,14 +158,19 @@ def section(report):
     fit = fit_of(entries[0], "energy_error")
     t_from, t_to = rp.num(fit.get("t_from")), rp.num(fit.get("t_to"))
     decades = f"{math.log10(t_to / t_from):g}" if t_from > 0 and t_to > t_from else "—"
+    spread = rp.num(((report.get("options") or {}).get("horizon") or {}).get("asymptotic_spread"))
+    spread_text = f" by more than {spread:g}" if math.isfinite(spread) else ""
     lines += ["Growth of the energy error and of the rotation defect ‖RᵀR − I‖_F over long fixed-step runs, each "
-              "as its largest so far: the exponent p of err ≈ C tᵖ by least squares on log-log over "
+              "as its envelope (the largest value in each log-spaced window between samples): the exponent p "
+              "of err ≈ C tᵖ by least squares on log-log over "
               f"t = {md.fmt(t_from)} – {md.fmt(t_to)} s (the last {decades} "
               "decades of the run), ± its 95 % interval, and the slopes over the first and second half of that "
-              "window (early → late; where they differ by more than the interval, the growth law is still "
-              "changing). p ≈ 0: bounded, 1: a steady drift, 2: a drift that feeds on itself, ½: a random walk. "
-              "\"rounding\": the largest value in the window is below 100 ε √n (times the energy scale for "
-              "the energy), rounding errors and not the method. A run that stopped has no fit.", ""]
+              f"window (early → late). Where they differ{spread_text}, the growth law is still changing and "
+              "p reads \"not yet asymptotic (early → late)\". p ≈ 0: bounded, 1: a steady drift, 2: a drift "
+              "that feeds on itself, ½: a random walk. \"rounding\": the largest value in the window is below "
+              "100 ε √n (times the energy scale for the energy), rounding errors and not the method. A run that "
+              "stopped has no fit. \"same as\": the series equals an earlier run's to 1e-9 relative at every "
+              "sample (the same tableau on (v, α) of a homogeneous ball), drawn and stated once.", ""]
     rows = []
     for r in entries:
         e, d = fit_of(r, "energy_error"), fit_of(r, "rotation_defect")
@@ -150,44 +181,78 @@ def section(report):
                      r.get("status", "ok") + (f" at t = {md.fmt(rp.num(r.get('stop_time')))}" if stopped else ""),
                      count_text(r.get("steps")),
                      exponent_text(e), halves_text(e), md.fmt(rp.num(last_e)),
-                     exponent_text(d), halves_text(d), md.fmt(rp.num(last_d)), md.fmt(rp.num(r.get("wall_s")))])
+                     exponent_text(d), halves_text(d), md.fmt(rp.num(last_d)), md.fmt(rp.num(r.get("wall_s"))),
+                     _same_text(r)])
     lines += md.table(["scene", "kind", "integrator", "status", "steps", "energy p", "early → late",
                        "energy error at the end (J)", "defect p", "early → late", "defect at the end",
-                       "wall s"], rows)
+                       "wall s", "same as"], rows)
     total = sum(rp.num(r.get("wall_s")) for r in entries if math.isfinite(rp.num(r.get("wall_s"))))
     return lines + ["", f"The study took {total:.1f} s of wall time ({len(entries)} runs).", ""]
+
+
+def _same_text(run):
+    """'energy: rk4; defect: rk4', or '—'."""
+    series = (("energy_error", "energy"), ("rotation_defect", "defect"))
+    parts = [f"{short}: {same_as(run, key)}" for key, short in series if same_as(run, key)]
+    return "; ".join(parts) or "—"
 
 
 def _names(items):
     return ", ".join(f"{n} {p:.2f}" for n, p in items)
 
 
+def _exponents(entries, done, key):
+    """(asymptotic [(p, name)], rounding names, not asymptotic [name (early → late)]) of one series, each
+    shared series once under all its names."""
+    steady, rounding, moving = [], [], []
+    for r in done:
+        fit = fit_of(r, key)
+        p = rp.num(fit.get("p"))
+        if same_as(r, key):
+            continue
+        name = shown_name(entries, r, key)
+        if fit.get("at_rounding"):
+            rounding.append((p, name))
+        elif not math.isfinite(p):
+            continue
+        elif not_asymptotic(fit):
+            moving.append(f"{name} ({halves_text(fit)})")
+        else:
+            steady.append((p, name))
+    return sorted(steady), rounding, moving
+
+
 def finding_lines(report):
-    """One line per scene for the findings: the energy exponents, who keeps R at rounding, who stopped."""
+    """One line per scene for the findings: the energy exponents (or that they are not yet asymptotic), who
+    keeps R at rounding, who stopped; series identical by construction once, under all their names."""
     lines = []
     for scene in scenes(report):
         entries = runs(report, scene)
         first = entries[0]
         done = [r for r in entries if r.get("status", "ok") == "ok"]
-        energy = sorted((rp.num(fit_of(r, "energy_error").get("p")), r["integrator"]
-                         + (", rounding" if fit_of(r, "energy_error").get("at_rounding") else "")) for r in done)
-        energy = [(p, n) for p, n in energy if math.isfinite(p)]
-        growing = [(r["integrator"], rp.num(fit_of(r, "rotation_defect").get("p"))) for r in done
-                   if not fit_of(r, "rotation_defect").get("at_rounding")
-                   and math.isfinite(rp.num(fit_of(r, "rotation_defect").get("p")))]
-        rounding = [r["integrator"] for r in done if fit_of(r, "rotation_defect").get("at_rounding")]
+        energy, energy_rounding, energy_moving = _exponents(entries, done, "energy_error")
+        energy = sorted(energy + [(p, f"{n}, rounding") for p, n in energy_rounding if math.isfinite(p)])
+        growing, rounding, defect_moving = _exponents(entries, done, "rotation_defect")
         stopped = [f"{r['integrator']} ({r.get('status')} at t = {md.fmt(rp.num(r.get('stop_time')))})"
                    for r in entries if r.get("status", "ok") != "ok"]
         parts = []
         if energy:
             parts.append(f"energy error ∝ tᵖ with p from {energy[0][0]:.2f} ({energy[0][1]}) to "
                          f"{energy[-1][0]:.2f} ({energy[-1][1]})")
+        if energy_moving:
+            parts.append(f"energy error not yet asymptotic (p early → late) for {', '.join(energy_moving)}")
         if growing:
-            parts.append(f"rotation defect grows for {_names(growing)}")
+            parts.append(f"rotation defect grows for {_names((n, p) for p, n in growing)}")
+        if defect_moving:
+            parts.append(f"rotation defect not yet asymptotic (p early → late) for {', '.join(defect_moving)}")
         if rounding:
-            parts.append(f"stays at rounding for {', '.join(rounding)}")
+            parts.append(f"stays at rounding for {', '.join(n for _, n in rounding)}")
         if stopped:
             parts.append(f"stopped: {', '.join(stopped)}")
+        shared = [shown_name(entries, r, key) for key in ("energy_error",) for r in done
+                  if not same_as(r, key) and " = " in shown_name(entries, r, key)]
+        if shared:
+            parts.append("identical energy series (one tableau stepping (v, α)): " + "; ".join(shared))
         lines.append(f"- Long horizon on {scene} ({kind(first)}, {count_text(first.get('steps_planned'))} steps of "
                      f"h = {rp.num(first.get('h')):g} s): " + ("; ".join(parts) or "no run reached the end") + ".")
     return lines

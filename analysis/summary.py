@@ -99,12 +99,18 @@ def stability_section(report):
     entries = rp.stable_steps(report)
     if not entries:
         return lines + ["The report has no stability study.", ""]
-    bound = _rotation_bound(entries)
-    lines += ["Largest step h such that this and every smaller tested step keep the whole state bounded over the "
-              "run: it reaches the end, the energy error stays within its bound and the rotation defect "
-              f"‖RᵀR − I‖_F stays below {md.fmt(bound)} (the largest over the run, shown at that step); "
-              "\"none\": no tested step passes. Where a larger step failed, the first failure's status "
-              "(`chart-limit`: a Lie step past the exponential chart's edge) and why.", ""]
+    bounds = entries[0].get("thresholds") or {}
+    horizon = rp.num(entries[0].get("horizon"))
+    lines += ["Largest step h such that this and every smaller tested step run to "
+              + (f"t = {md.fmt(horizon)} s " if math.isfinite(horizon) else "the study's end ")
+              + "without failing: a run fails when it stops (its status), when its energy error passes "
+              f"{md.fmt(rp.num(bounds.get('energy')))} of the energy scale, when ‖RᵀR − I‖_F passes "
+              f"{md.fmt(rp.num(bounds.get('rotation_defect')))} (R is no rotation any more), or when either "
+              "grows exponentially (over the last two doublings of time its envelope's slope on log-log "
+              f"reaches {md.fmt(rp.num(bounds.get('growth_exponent')))} and accelerates). The energy error "
+              "(of the scale) and the rotation defect at that step are its accuracy, shown beside the verdict "
+              "and not used for it; \"none\": no tested step passes. Where a larger step failed, how the "
+              "first one did (`chart-limit`: a Lie step past the exponential chart's edge).", ""]
     rows = []
     for e in entries:
         h = rp.stable_h(e)
@@ -112,31 +118,34 @@ def stability_section(report):
         tested = [t for t in tested if math.isfinite(t)]
         span = f"{min(tested):.3g} – {max(tested):.3g} ({len(tested)})" if tested else "—"
         rows.append([e["scene"], e["integrator"], md.fmt(h) if math.isfinite(h) else "none",
-                     md.fmt(rp.num(e.get("rotation_defect"))), span, _first_failure(e, bound)])
+                     md.fmt(rp.num(e.get("rotation_defect"))), md.fmt(rp.num(e.get("energy_error"))), span,
+                     _first_failure(e, bounds)])
     return lines + md.table(["scene", "integrator", "largest stable h (s)", "rotation defect there",
-                             "tested h (count)", "next step fails by"], rows) + [""]
+                             "energy error there (of the scale)", "tested h (count)", "next step fails by"],
+                            rows) + [""]
 
 
-def _rotation_bound(entries):
-    for e in entries:
-        value = rp.num((e.get("thresholds") or {}).get("rotation_defect"))
-        if math.isfinite(value):
-            return value
-    return 1e-2
-
-
-def _first_failure(entry, bound):
-    """Why the first unstable rung failed: its status, or which bound it broke."""
+def _first_failure(entry, bounds):
+    """How the first unstable rung failed (the report's `failure`), with the numbers that decided it."""
     for t in entry.get("tried") or []:
         if t.get("stable", True):
             continue
-        status = t.get("status", "ok")
-        if status != "ok":
-            return f"{status} (h = {md.fmt(rp.num(t.get('h')))})"
-        defect = rp.num(t.get("rotation_defect"))
-        if math.isfinite(defect) and defect >= bound:
-            return f"rotation defect {md.fmt(defect)} (h = {md.fmt(rp.num(t.get('h')))})"
-        return f"energy error {md.fmt(rp.num(t.get('energy_error')))} (h = {md.fmt(rp.num(t.get('h')))})"
+        at = f"(h = {md.fmt(rp.num(t.get('h')))})"
+        failure = t.get("failure")
+        growth = t.get("growth") or {}
+        if failure == "energy":
+            return (f"energy error {md.fmt(rp.num(t.get('energy_error')))} > "
+                    f"{md.fmt(rp.num(bounds.get('energy')))} of the scale {at}")
+        if failure == "rotation-defect":
+            return (f"rotation defect {md.fmt(rp.num(t.get('rotation_defect')))} > "
+                    f"{md.fmt(rp.num(bounds.get('rotation_defect')))} {at}")
+        if failure in ("energy-growth", "defect-growth"):
+            key, name = (("energy_error", "energy error") if failure == "energy-growth"
+                         else ("rotation_defect", "rotation defect"))
+            g = growth.get(key) or {}
+            return (f"exponential growth of the {name} (slope {md.fmt(rp.num(g.get('p_early')))} → "
+                    f"{md.fmt(rp.num(g.get('p_late')))}) {at}")
+        return f"{t.get('status', 'ok')} {at}"
     return "— (stable to the top)" if entry.get("at_limit") else "—"
 
 

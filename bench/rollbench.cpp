@@ -468,7 +468,7 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--no-stability", run.no_stability, "skip the stability study of the preset");
   run_cmd->add_option("--horizon-steps", run.horizon_steps,
                       "run the horizon study with this many fixed steps per run, e.g. 1e5 or 1e6 (the default "
-                      "preset's: 1e5; full: 1e6)");
+                      "preset's: 1e6; full: 1e7)");
   run_cmd->add_option("--horizon-scenes", run.horizon_scenes,
                       "the horizon study's scenes (default: bumpy-long,chaplygin-bumpy-long)");
   run_cmd->add_option("--horizon-integrators", run.horizon_integrators,

@@ -50,6 +50,7 @@ json fit_json(const GrowthFit& f) {
           {"largest", number(f.largest)},
           {"rounding_level", f.rounding_level},
           {"at_rounding", f.at_rounding},
+          {"asymptotic", f.asymptotic},
           {"why_none", f.why_none.empty() ? json(nullptr) : json(f.why_none)}};
 }
 
@@ -131,25 +132,31 @@ HorizonRecord horizon_run(const Problem& problem, const Integrator& m, const Hor
   r.stop_time = run.stop_time;
   r.cost = run.cost;
   const DriftMeter meter(problem);
-  double energy = 0.0, defect = meter.at(problem.y0()).rotation_defect;
+  // the envelope: the largest of each over the states measured in the
+  // sample's window (the previous sample's step, its own step], so that a
+  // late window does not carry an early peak as a running maximum would
+  double energy = kNaN, defect = kNaN;
   std::size_t next = 0;
   for (std::size_t i = 0; i < run.output.t.size(); ++i) {
     const Drift d = meter.at(run.output.y[i]);
-    // a non-finite value does not lower the largest so far (NaN fails >)
-    if (d.energy > energy) energy = d.energy;
-    if (d.rotation_defect > defect) defect = d.rotation_defect;
+    // a non-finite value does not raise the largest (NaN fails >=)
+    if (!(energy >= d.energy) && std::isfinite(d.energy)) energy = d.energy;
+    if (!(defect >= d.rotation_defect) && std::isfinite(d.rotation_defect)) defect = d.rotation_defect;
     const long n = std::lround(run.output.t[i] / spec.h);
     while (next < samples.size() && samples[next] < n) ++next;
     if (next < samples.size() && samples[next] == n) {
       r.t.push_back(run.output.t[i]);
       r.energy_error.push_back(energy);
       r.rotation_defect.push_back(defect);
+      energy = defect = kNaN;
     }
   }
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double t_from = r.t_end * std::pow(10.0, -spec.fit_decades);
   r.energy_fit = fit_growth(r.t, r.energy_error, t_from, r.t_end, rounding_level(spec.steps, r.energy_scale));
   r.defect_fit = fit_growth(r.t, r.rotation_defect, t_from, r.t_end, rounding_level(spec.steps, 1.0));
+  for (GrowthFit* f : {&r.energy_fit, &r.defect_fit})
+    f->asymptotic = std::abs(f->p_late - f->p_early) <= spec.asymptotic_spread;
   if (r.status != Status::ok) {
     // a run that stopped has no growth law to its end: its samples stay, no fit
     for (GrowthFit* f : {&r.energy_fit, &r.defect_fit}) {
@@ -218,6 +225,52 @@ HorizonResults run_horizon(const SweepSpec& spec, const std::function<void(const
   return out;
 }
 
+namespace {
+
+// The rounding level a run's fit recorded for a series; NaN without one.
+double rounding_of(const json& run, const char* key) {
+  const json* f = run.contains("fit") && run["fit"].contains(key) ? &run["fit"][key] : nullptr;
+  return f && f->contains("rounding_level") && (*f)["rounding_level"].is_number() ? (*f)["rounding_level"].get<double>()
+                                                                                  : kNaN;
+}
+
+// Both arrays of one length, null at the same samples, rising above
+// kSameSeriesRise times the rounding level and nowhere further apart than it.
+bool same_series(const json& a, const json& b, double rounding) {
+  if (!a.is_array() || !b.is_array() || a.size() != b.size() || a.empty() || !(rounding > 0.0)) return false;
+  double largest = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i].is_number() != b[i].is_number()) return false;
+    if (!a[i].is_number()) continue;
+    const double x = a[i].get<double>(), y = b[i].get<double>();
+    if (!(std::abs(x - y) <= rounding)) return false;
+    largest = std::max({largest, std::abs(x), std::abs(y)});
+  }
+  return largest >= kSameSeriesRise * rounding;
+}
+
+}  // namespace
+
+void mark_same_series(json& runs) {
+  const auto index = [&](std::size_t i) { return runs[i].value("index", i); };
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    json same = {{"energy_error", nullptr}, {"rotation_defect", nullptr}};
+    for (const char* key : {"energy_error", "rotation_defect"}) {
+      // the earliest earlier run of the scene with the same times and series
+      std::size_t first = runs.size();
+      for (std::size_t j = 0; j < runs.size(); ++j)
+        if (index(j) < index(i) && (first == runs.size() || index(j) < index(first)) &&
+            runs[j].value("scene", "") == runs[i].value("scene", "") &&
+            runs[j].value("t", json()) == runs[i].value("t", json()) &&
+            same_series(runs[j].value(key, json()), runs[i].value(key, json()),
+                        std::max(rounding_of(runs[i], key), rounding_of(runs[j], key))))
+          first = j;
+      if (first < runs.size()) same[key] = runs[first].value("integrator", "");
+    }
+    runs[i]["same_as"] = same;
+  }
+}
+
 json horizon_json(const HorizonResults& results) {
   json runs = json::array();
   for (const HorizonRecord& r : results.runs)
@@ -243,6 +296,7 @@ json horizon_json(const HorizonResults& results) {
                     {"energy_error", r.energy_error},
                     {"rotation_defect", r.rotation_defect},
                     {"fit", {{"energy_error", fit_json(r.energy_fit)}, {"rotation_defect", fit_json(r.defect_fit)}}}});
+  mark_same_series(runs);
   return {{"runs", runs}};
 }
 
@@ -256,7 +310,9 @@ json horizon_options_json(const HorizonSpec& s) {
           {"steps", s.steps},
           {"samples_per_decade", s.samples_per_decade},
           {"fit_decades", s.fit_decades},
-          {"dense_outputs", s.dense_outputs}};
+          {"dense_outputs", s.dense_outputs},
+          {"asymptotic_spread", s.asymptotic_spread},
+          {"same_series_rise", kSameSeriesRise}};
 }
 
 }  // namespace rb

@@ -1,9 +1,12 @@
 #pragma once
 // The long-horizon study (docs/usage.md#the-horizon-study): per scene and
 // fixed-step method one run of HorizonSpec::steps steps of h, its energy
-// error |H - H0| and rotation defect ||R^T R - I||_F recorded as the largest
-// so far at log-spaced times, and for each the growth exponent p of
-// err ~ C t^p, fitted by least squares on log-log over the run's later part.
+// error |H - H0| and rotation defect ||R^T R - I||_F recorded as their
+// envelope over log-spaced windows (the largest in each window), and for
+// each the growth exponent p of err ~ C t^p, fitted by least squares on
+// log-log over the run's later part; the fit says whether its early and
+// late halves agree (asymptotic), and series identical to another run's
+// (the same tableau on (v, alpha) of a homogeneous ball) are marked.
 // Where the stability study asks "does it stay bounded", this asks "how fast
 // does it grow": t^0 bounded, t^1 a steady drift, t^2 a drift that feeds on
 // itself, t^(1/2) a random walk of rounding errors.
@@ -30,6 +33,7 @@ struct GrowthFit {
   double largest = kNaN;  // the largest value in the window
   double rounding_level = 0.0;
   bool at_rounding = false;  // largest <= rounding_level: p describes rounding, not the method
+  bool asymptotic = false;   // |p_late - p_early| <= HorizonSpec::asymptotic_spread (false without a fit)
   std::string why_none;      // why p is NaN (empty when there is a fit)
 };
 
@@ -55,8 +59,9 @@ struct HorizonRecord {
   Cost cost;
   double wall_s = 0.0;        // the integration and the measurement
   double energy_scale = 0.0;  // m g0 r + the starting kinetic energy (J)
-  // at the sample times: the largest over [0, t] of the states measured (the
-  // samples and a uniform grid of about dense_outputs states between)
+  // at the sample times: the envelope, the largest of the states measured
+  // (the samples and a uniform grid of about dense_outputs states between)
+  // in the window (the previous sample time, t]; NaN where none is finite
   std::vector<double> t, energy_error, rotation_defect;
   GrowthFit energy_fit, defect_fit;
 };
@@ -64,6 +69,21 @@ struct HorizonRecord {
 struct HorizonResults {
   std::vector<HorizonRecord> runs;
 };
+
+// Two series of one scene are the same to rounding when they are recorded
+// at the same times, no sample differs by more than their rounding level
+// (the larger of the two fits' rounding_level), and they rise above
+// kSameSeriesRise times it (two series at rounding are not "the same").
+// rk4, rkmk4, cf4 and rk4-projected's energy errors on a homogeneous ball
+// (one tableau on (v, alpha)) differ by ~1e-13 J over 10^6 steps, against a
+// level of ~1e-11 J.
+inline constexpr double kSameSeriesRise = 100.0;
+
+// Marks, in the report's horizon runs, every series that is the same as
+// that of an earlier run (by index) of its scene:
+// "same_as": {"energy_error": name or null, "rotation_defect": name or
+// null}, the name of the first such run. The sweep and the merge both call it.
+void mark_same_series(nlohmann::json& runs);
 
 // The sample step counts: round(10^(k / per_decade)) for k = 0, 1, ...,
 // without repeats, below steps, then steps itself.

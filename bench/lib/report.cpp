@@ -83,6 +83,14 @@ std::string utc_now() {
   return buffer;
 }
 
+// What fails a stability rung, as the report states it.
+json bounds_json(const StabilityBounds& b) {
+  return {{"energy", b.energy_fraction},
+          {"rotation_defect", b.rotation_defect},
+          {"growth_exponent", b.growth_exponent},
+          {"growth_floor", b.growth_floor}};
+}
+
 json options_of(const SweepSpec& s) {
   const StabilitySpec& st = s.stability;
   // scene paths as the user typed them: any bytes, text here
@@ -110,8 +118,8 @@ json options_of(const SweepSpec& s) {
             {"search_h_max", st.search_h_max},
             {"search_h_min", st.search_h_min},
             {"search_t_end", st.search_t_end},
-            {"energy_fraction", st.energy_fraction},
-            {"rotation_defect_bound", st.rotation_defect_bound}}},
+            {"search_outputs", st.search_outputs},
+            {"bounds", bounds_json(st.bounds)}}},
           {"horizon", horizon_options_json(s.horizon)}};
 }
 
@@ -205,6 +213,10 @@ json timed_call(const SweepSpec& spec) {
        "error_max_run.same_steps is false and error_grid holds the grid run's errors"}};
 }
 
+json growth_json(const GrowthShape& g) {
+  return {{"p_early", number(g.p_early)}, {"p_late", number(g.p_late)}, {"exponential", g.exponential}};
+}
+
 json stability_json(const StabilityResults& s) {
   json drift = json::array(), stable = json::array();
   for (const DriftRecord& d : s.drift)
@@ -225,20 +237,28 @@ json stability_json(const StabilityResults& s) {
   for (const StableStepRecord& r : s.largest_stable_h) {
     json tried = json::array();
     for (const StableStepTry& t : r.tried)
-      tried.push_back({{"h", t.h},
-                       {"status", std::string(status_name(t.status))},
-                       {"energy_error", number(t.energy_error)},
-                       {"rotation_defect", number(t.rotation_defect)},
-                       {"stable", t.stable}});
+      tried.push_back(
+          {{"h", t.h},
+           {"status", std::string(status_name(t.status))},
+           {"message", t.message},
+           {"stop_time", t.stop_time},
+           {"energy_error", number(t.energy_error)},
+           {"rotation_defect", number(t.rotation_defect)},
+           {"growth",
+            {{"energy_error", growth_json(t.energy_growth)}, {"rotation_defect", growth_json(t.defect_growth)}}},
+           {"failure", t.stable ? json(nullptr) : json(failure_name(t.failure))},
+           {"stable", t.stable}});
     stable.push_back({{"index", r.index},
                       {"scene", r.scene},
                       {"integrator", r.method.name},
                       {"family", r.method.family},
                       {"h", number(r.h)},
+                      {"horizon", r.horizon},
                       {"at_limit", r.at_limit},
+                      {"energy_error", number(r.energy_error)},
                       {"rotation_defect", number(r.rotation_defect)},
                       {"energy_scale", r.energy_scale},
-                      {"thresholds", {{"energy", r.energy_fraction}, {"rotation_defect", r.rotation_defect_bound}}},
+                      {"thresholds", bounds_json(r.bounds)},
                       {"tried", tried}});
   }
   return {{"drift", drift}, {"largest_stable_h", stable}};
@@ -587,6 +607,7 @@ json merge_reports(const std::vector<json>& shards, const std::vector<std::strin
   std::sort(drift.begin(), drift.end(), by_index);
   std::sort(stable.begin(), stable.end(), by_index);
   std::sort(horizon.begin(), horizon.end(), by_index);
+  mark_same_series(horizon);  // across the shards: a run's twin may be in another
   json run_list = json::array();
   std::vector<FitRun> fit_input;
   for (const ShardRun& r : runs) run_list.push_back(r.entry), fit_input.push_back(r.fit);

@@ -1,5 +1,6 @@
 #include "bench/lib/stability.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -7,7 +8,7 @@
 #include "bench/lib/drift.hpp"
 #include "bench/lib/integrate_safely.hpp"
 #include "integrators/registry.hpp"
-#include "problems/so3.hpp"
+#include "problems/utf8.hpp"
 
 namespace rb {
 
@@ -53,27 +54,58 @@ DriftRecord drift_run(const Problem& problem, const Integrator& m, const Stabili
   return d;
 }
 
+// One rung: a fixed-step run to the horizon recording about
+// search_outputs states at whole steps, judged on them and the last.
+StableStepTry stable_step_try(const Problem& problem, const Integrator& m, double h, double energy_scale,
+                              const StabilitySpec& st) {
+  RunOptions o;
+  o.t_end = st.search_t_end;
+  o.h = h;
+  o.max_steps = 5'000'000;
+  const double taken = step_taken(h, st.search_t_end);
+  const long steps = std::lround(st.search_t_end / taken);
+  const long every = std::max(1L, steps / std::max(1, st.search_outputs));
+  for (long n = every; n < steps; n += every) o.output_times.push_back(taken * static_cast<double>(n));
+  const RunResult run = integrate_safely(m, problem, o);
+  const DriftMeter meter(problem);
+  std::vector<double> t, energy, defect;
+  const auto record = [&](double at, const FlatState& y) {
+    const Drift d = meter.at(y);
+    t.push_back(at);
+    energy.push_back(d.energy / energy_scale);
+    defect.push_back(d.rotation_defect);
+  };
+  for (std::size_t i = 0; i < run.output.t.size(); ++i)
+    if (run.output.t[i] <= run.stop_time) record(run.output.t[i], run.output.y[i]);
+  // the last state: the end, or the last valid state of a run that stopped
+  if (t.empty() || run.stop_time > t.back()) record(run.stop_time, run.final_state);
+  const RungVerdict v = judge_rung(run.status, t, energy, defect, st.search_t_end, st.bounds);
+  return {h,
+          run.status,
+          valid_utf8(run.message),
+          run.stop_time,
+          v.energy_error,
+          v.rotation_defect,
+          v.energy_growth,
+          v.defect_growth,
+          v.failure,
+          v.failure == StabilityFailure::none};
+}
+
 StableStepRecord stable_step_search(const SweepScene& s, const Integrator& m, const StabilitySpec& st) {
   StableStepRecord r;
   r.scene = s.scene.name;
   r.method = m.info();
+  r.horizon = st.search_t_end;
   r.energy_scale = energy_scale(s.problem);
-  r.energy_fraction = st.energy_fraction;
-  r.rotation_defect_bound = st.rotation_defect_bound;
-  const DriftMeter meter(s.problem);
+  r.bounds = st.bounds;
   // upward from the smallest step, so that every h below the answer is tried
   for (double h = st.search_h_min; h <= st.search_h_max * (1 + 1e-12); h *= 2) {
-    const RunRecord run = run_task(s, SweepTask{0, 0, m.name(), h, kNaN, {}}, 5'000'000);
-    // both over the run: the recorded states (every multiple of h on the
-    // error grid) and the last one
-    const Drift last = meter.at(run.final_state);
-    StableStepTry t{h, run.status, kNaN, std::max(run.rotation_drift, last.rotation_defect), false};
-    if (run.status == Status::ok) t.energy_error = std::max(run.energy_drift, last.energy) / r.energy_scale;
-    t.stable = run.status == Status::ok && t.energy_error <= st.energy_fraction &&
-               t.rotation_defect < st.rotation_defect_bound;
-    r.tried.push_back(t);
+    r.tried.push_back(stable_step_try(s.problem, m, h, r.energy_scale, st));
+    const StableStepTry& t = r.tried.back();
     if (!t.stable) break;
     r.h = h;
+    r.energy_error = t.energy_error;
     r.rotation_defect = t.rotation_defect;
   }
   r.at_limit = !r.tried.empty() && r.tried.back().stable;

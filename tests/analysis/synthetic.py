@@ -204,7 +204,14 @@ STABLE_H = {"euler": 2 ** -6, "exp-euler": 2 ** -5, "rk4": 2 ** -2, "rkmk4": 2 *
             "rkmk4-seminar": 2 ** -2, "odeint-rk4": 2 ** -2, "gsl-rk4": 2 ** -3}
 ROTATION_DEFECT = {"euler": 0.3, "exp-euler": 4e-16, "rk4": 2e-3, "rkmk4": 6e-16,
                    "rkmk4-seminar": 5e-16, "odeint-rk4": 2.5e-3, "gsl-rk4": 1e-4}
-STABILITY_HS = [2.0 ** -k for k in range(0, 9)]
+ENERGY_ERROR = {"euler": 0.4, "exp-euler": 0.3, "rk4": 2e-6, "rkmk4": 1e-6, "rkmk4-seminar": 3e-6,
+                "odeint-rk4": 2e-6, "gsl-rk4": 5e-7}
+# how the first unstable rung fails (bench/lib/stability_verdict.hpp's names)
+STABILITY_FAILURE = {"euler": "rotation-defect", "exp-euler": "energy", "rk4": "rotation-defect",
+                     "rkmk4": "stopped", "rkmk4-seminar": "energy-growth", "odeint-rk4": "rotation-defect",
+                     "gsl-rk4": "energy"}
+STABILITY_BOUNDS = {"energy": 1.0, "rotation_defect": 0.5, "growth_exponent": 3.0, "growth_floor": 1e-9}
+STABILITY_HS = [2.0 ** -k for k in range(8, -1, -1)]
 
 
 def _stability():
@@ -231,10 +238,21 @@ def _stability():
         for name, h in STABLE_H.items():
             if scene == "valley-sideways" and name == "euler":
                 h = None  # no tested step passes
+            tried = [{"h": x, "status": "ok", "stable": True, "failure": None}
+                     for x in STABILITY_HS if h is not None and x <= h]
+            # the first unstable rung: each way of failing on some method
+            first = {"h": 2 * h if h else min(STABILITY_HS), "status": "ok", "stable": False,
+                     "energy_error": 1.5, "rotation_defect": 0.7,
+                     "growth": {"energy_error": {"p_early": 2.0, "p_late": 4.0, "exponential": True},
+                                "rotation_defect": {"p_early": 1.0, "p_late": 1.0, "exponential": False}},
+                     "failure": STABILITY_FAILURE[name]}
+            if first["failure"] == "stopped":
+                first["status"] = "chart-limit"
             stable.append({"scene": scene, "integrator": name, "family": FIXED[name][0], "h": h,
-                           "tried": [{"h": x, "stable": h is not None and x <= h} for x in STABILITY_HS],
+                           "horizon": 10.0, "tried": tried + [first],
                            "rotation_defect": None if h is None else ROTATION_DEFECT[name],
-                           "thresholds": {"energy_fraction": 0.1}})
+                           "energy_error": None if h is None else ENERGY_ERROR[name],
+                           "thresholds": STABILITY_BOUNDS})
     return {"drift": drift, "largest_stable_h": stable}
 
 

@@ -1,6 +1,8 @@
 """The horizon study's figure, summary section and findings line from a
 hand-made report: power laws with known exponents (the runner's fits
-written beside them), a method at rounding level and one that stopped."""
+written beside them), a method at rounding level, one that stopped, one
+whose fit is not yet asymptotic and one whose energy series the report
+marks the same as another's."""
 import math
 import os
 import tempfile
@@ -23,10 +25,11 @@ T = [H * n for n in (1, 3, 10, 32, 100, 316, 1000, 3162, 10000)]
 T_FROM = T[-1] / 100
 
 
-def fit(p, c, at_rounding=False, rounding=1e-11):
-    return {"p": p, "ci95": 0.01, "p_early": p - 0.05, "p_late": p + 0.05, "log10_c": math.log10(c),
+def fit(p, c, at_rounding=False, rounding=1e-11, halves=None):
+    early, late = halves or (p - 0.05, p + 0.05)
+    return {"p": p, "ci95": 0.01, "p_early": early, "p_late": late, "log10_c": math.log10(c),
             "t_from": T_FROM, "t_to": T[-1], "points": 5, "largest": c * T[-1] ** p, "rounding_level": rounding,
-            "at_rounding": at_rounding, "why_none": None}
+            "at_rounding": at_rounding, "asymptotic": abs(late - early) <= 0.15, "why_none": None}
 
 
 def no_fit(why):
@@ -63,6 +66,12 @@ def with_horizon(report):
         runs += [horizon_run(base, scene, "rk4", "rk", (1.0, 1e-9), (1.0, 1e-6)),
                  horizon_run(base + 1, scene, "rkmk4", "rkmk", (0.5, 1e-10), (0.5, 1e-16)),
                  horizon_run(base + 2, scene, "euler", "rk", None, None, status="domain", stop=12.0)]
+        if scene == "bumpy-long":
+            moving = horizon_run(base + 3, scene, "cf4", "cf", (0.45, 1e-9), (0.5, 1e-16))
+            moving["fit"]["energy_error"] = fit(0.45, 1e-9, halves=(0.30, 0.63))
+            twin = horizon_run(base + 4, scene, "rk4-projected", "projection", (1.0, 1e-9), (0.5, 1e-16))
+            twin["same_as"] = {"energy_error": "rk4", "rotation_defect": None}
+            runs += [moving, twin]
     report["horizon"] = {"runs": runs}
     return report
 
@@ -119,7 +128,7 @@ class HorizonFromAHandMadeReport(unittest.TestCase):
 
     def test_summary_section_lists_every_run_with_its_exponents(self):
         rows = md.parse_table(self.markdown, horizon.HEADING)
-        self.assertEqual(len(rows), 6)
+        self.assertEqual(len(rows), 8)
         by = {(r[0], r[2]): r for r in rows}
         rk4 = by[("chaplygin-bumpy-long", "rk4")]
         self.assertEqual(rk4[1], "R feeds back")
@@ -150,6 +159,34 @@ class HorizonFromAHandMadeReport(unittest.TestCase):
         self.assertIn("stopped: euler (domain at t = 12)", line)
         findings = self.markdown.split("## Contents")[0]
         self.assertIn(line, findings)
+
+    def test_a_fit_whose_halves_disagree_is_not_yet_asymptotic(self):
+        rows = {(r[0], r[2]): r for r in md.parse_table(self.markdown, horizon.HEADING)}
+        self.assertEqual(rows[("bumpy-long", "cf4")][5], "not yet asymptotic (0.30 → 0.63)")
+        self.assertEqual(rows[("bumpy-long", "rk4")][5], "1.00 ± 0.01")  # 0.95 → 1.05: within 0.15
+        line = next(x for x in self.markdown.splitlines() if x.startswith("- Long horizon on bumpy-long "))
+        self.assertIn("energy error not yet asymptotic (p early → late) for cf4 (0.30 → 0.63)", line)
+        self.assertNotIn("0.45", line)  # no single p for it
+        # the halves within the report's spread read as one p
+        self.assertIn("energy error ∝ tᵖ with p from 0.50 (rkmk4) to 1.00 (rk4 = rk4-projected)", line)
+
+    def test_a_series_the_same_as_another_is_drawn_and_stated_once(self):
+        line = next(x for x in self.markdown.splitlines() if x.startswith("- Long horizon on bumpy-long "))
+        # its energy once in the p range and once in the identical-series note; its own defect at rounding
+        self.assertEqual(line.count("rk4-projected"), 3)
+        self.assertEqual(line.count("rk4 = rk4-projected"), 2)
+        self.assertIn("identical energy series (one tableau stepping (v, α)): rk4 = rk4-projected", line)
+        rows = {(r[0], r[2]): r for r in md.parse_table(self.markdown, horizon.HEADING)}
+        self.assertEqual(rows[("bumpy-long", "rk4-projected")][12], "energy: rk4")
+        self.assertEqual(rows[("bumpy-long", "rk4")][12], "—")
+        palette = style.Palette(rp.families(self.report))
+        energy, defect = horizon.figure(self.report, "bumpy-long", palette).get_axes()
+        labels = [line.get_label() for line in labelled(energy)]
+        self.assertIn("rk4 = rk4-projected: p = 1.00 ± 0.01", labels)
+        self.assertFalse(any(x.startswith("rk4-projected") for x in labels), labels)
+        self.assertIn("cf4: not yet asymptotic (0.30 → 0.63)", labels)
+        # its defect is its own: drawn
+        self.assertIn("rk4-projected: p = 0.50 ± 0.01 (rounding)", [x.get_label() for x in labelled(defect)])
 
     def test_a_report_without_the_study(self):
         report = syn.make_report()

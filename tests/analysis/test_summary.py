@@ -193,16 +193,26 @@ class SummaryOfSyntheticReport(unittest.TestCase):
             self.assertTrue(math.isclose(float(intercept), math.log10(a), rel_tol=REL))
             self.assertEqual((residual, points), ("0", str(len(syn.TOLS))))
 
-    def test_stability_with_the_rotation_defect_beside(self):
+    def test_stability_with_the_accuracy_beside_and_how_the_next_step_fails(self):
         rows = {(r[0], r[1]): r for r in md.parse_table(self.markdown, "## Stability")}
         self.assertEqual(len(rows), len(syn.SCENES) * len(syn.STABLE_H))
+        expected = {"rotation-defect": "rotation defect 0.7 > 0.5", "energy": "energy error 1.5 > 1 of the scale",
+                    "stopped": "chart-limit",
+                    "energy-growth": "exponential growth of the energy error (slope 2 → 4)"}
         for (scene, name), row in rows.items():
+            failure = expected[syn.STABILITY_FAILURE[name]]
             if scene == "valley-sideways" and name == "euler":
-                self.assertEqual(row[2:4], ["none", "—"])
+                self.assertEqual(row[2:5], ["none", "—", "—"])
+                self.assertEqual(row[5], f"{min(syn.STABILITY_HS):.3g} – {min(syn.STABILITY_HS):.3g} (1)")
+                self.assertEqual(row[6], f"{failure} (h = {md.fmt(min(syn.STABILITY_HS))})")
                 continue
-            self.assertEqual(float(row[2]), float(f"{syn.STABLE_H[name]:.3g}"))
+            h = syn.STABLE_H[name]
+            self.assertEqual(float(row[2]), float(f"{h:.3g}"))
             self.assertEqual(float(row[3]), float(f"{syn.ROTATION_DEFECT[name]:.3g}"))
-            self.assertEqual(row[4], f"{min(syn.STABILITY_HS):.3g} – {max(syn.STABILITY_HS):.3g} (9)")
+            self.assertEqual(float(row[4]), float(f"{syn.ENERGY_ERROR[name]:.3g}"))
+            self.assertEqual(row[6], f"{failure} (h = {md.fmt(2 * h)})")
+        self.assertIn("run to t = 10 s without failing", self.markdown)
+        self.assertIn("passes 1 of the energy scale, when ‖RᵀR − I‖_F passes 0.5", self.markdown)
 
     def test_every_failure_is_listed(self):
         rows = md.parse_table(self.markdown, "## Failures")
