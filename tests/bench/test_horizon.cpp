@@ -273,6 +273,26 @@ TEST(HorizonCli, OptionsRunTheStudyIntoTheReportAndShardsMerge) {
   }
 }
 
+TEST(HorizonCli, AMergeFindsTwinSeriesAcrossShards) {
+  const fs::path a = testing::cli_temp_file("twins-a.json"), b = testing::cli_temp_file("twins-b.json"),
+                 merged = testing::cli_temp_file("twins-merged.json");
+  const std::string common =
+      "run --scenes plane --integrators rk4 --h 0.25 --repeats 0 --horizon-steps 4000 "
+      "--horizon-scenes bumpy-long --horizon-integrators rk4,rkmk4 ";
+  ASSERT_EQ(run_rollbench(common + "--shard 0/2 --out " + a.string()).code, 0);
+  ASSERT_EQ(run_rollbench(common + "--shard 1/2 --out " + b.string()).code, 0);
+  // each shard alone holds one of the two: no twin
+  const nlohmann::json shard = nlohmann::json::parse(slurp(b));
+  ASSERT_EQ(shard.at("horizon").at("runs").size(), 1u);
+  EXPECT_TRUE(shard.at("horizon").at("runs")[0].at("same_as").at("energy_error").is_null());
+  ASSERT_EQ(run_rollbench("merge " + a.string() + " " + b.string() + " --out " + merged.string()).code, 0);
+  const nlohmann::json whole = nlohmann::json::parse(slurp(merged));
+  const nlohmann::json& runs = whole.at("horizon").at("runs");
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_TRUE(runs[0].at("same_as").at("energy_error").is_null());
+  EXPECT_EQ(runs[1].at("same_as").at("energy_error"), "rk4");
+}
+
 TEST(HorizonCli, BadOptionsExitWithTwo) {
   const std::string out = " --out " + testing::cli_temp_file("horizon-bad.json").string();
   const std::string base = "run --scenes plane --integrators rk4 --h 0.25 --repeats 0 ";
