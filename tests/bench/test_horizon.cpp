@@ -1,9 +1,12 @@
 // The horizon study (bench/lib/horizon.hpp): the growth fit recovers p of a
-// synthetic C t^p, and only over its window; a flat RK4's rotation defect
-// grows linearly where R feeds back while RKMK4's stays at rounding level
-// (on the group by construction); a failing method is a record without a
-// fit; bad options are refused with their names; the report carries the
-// study and merging shards keeps every run once.
+// synthetic C t^p, and only over its window, and says whether its halves
+// agree; the series is the envelope over each window (every step measured,
+// compared), not a running maximum; a flat RK4's rotation defect grows
+// linearly where R feeds back while RKMK4's stays at rounding level (on the
+// group by construction); series identical by construction are marked once,
+// within a sweep and across merged shards; a failing method is a record
+// without a fit; bad options are refused with their names; the report
+// carries the study and merging shards keeps every run once.
 #include <gtest/gtest.h>
 
 #include <cmath>
