@@ -1,9 +1,12 @@
 // The horizon study (bench/lib/horizon.hpp): the growth fit recovers p of a
-// synthetic C t^p, and only over its window; a flat RK4's rotation defect
-// grows linearly where R feeds back while RKMK4's stays at rounding level
-// (on the group by construction); a failing method is a record without a
-// fit; bad options are refused with their names; the report carries the
-// study and merging shards keeps every run once.
+// synthetic C t^p, and only over its window, and says whether its halves
+// agree; the series is the envelope over each window (every step measured,
+// compared), not a running maximum; a flat RK4's rotation defect grows
+// linearly where R feeds back while RKMK4's stays at rounding level (on the
+// group by construction); series identical by construction are marked once,
+// within a sweep and across merged shards; a failing method is a record
+// without a fit; bad options are refused with their names; the report
+// carries the study and merging shards keeps every run once.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -271,6 +274,26 @@ TEST(HorizonCli, OptionsRunTheStudyIntoTheReportAndShardsMerge) {
     EXPECT_EQ(runs[i].at("t").size(), runs[i].at("rotation_defect").size());
     EXPECT_TRUE(runs[i].at("fit").at("rotation_defect").contains("p"));
   }
+}
+
+TEST(HorizonCli, AMergeFindsTwinSeriesAcrossShards) {
+  const fs::path a = testing::cli_temp_file("twins-a.json"), b = testing::cli_temp_file("twins-b.json"),
+                 merged = testing::cli_temp_file("twins-merged.json");
+  const std::string common =
+      "run --scenes plane --integrators rk4 --h 0.25 --repeats 0 --horizon-steps 4000 "
+      "--horizon-scenes bumpy-long --horizon-integrators rk4,rkmk4 ";
+  ASSERT_EQ(run_rollbench(common + "--shard 0/2 --out " + a.string()).code, 0);
+  ASSERT_EQ(run_rollbench(common + "--shard 1/2 --out " + b.string()).code, 0);
+  // each shard alone holds one of the two: no twin
+  const nlohmann::json shard = nlohmann::json::parse(slurp(b));
+  ASSERT_EQ(shard.at("horizon").at("runs").size(), 1u);
+  EXPECT_TRUE(shard.at("horizon").at("runs")[0].at("same_as").at("energy_error").is_null());
+  ASSERT_EQ(run_rollbench("merge " + a.string() + " " + b.string() + " --out " + merged.string()).code, 0);
+  const nlohmann::json whole = nlohmann::json::parse(slurp(merged));
+  const nlohmann::json& runs = whole.at("horizon").at("runs");
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_TRUE(runs[0].at("same_as").at("energy_error").is_null());
+  EXPECT_EQ(runs[1].at("same_as").at("energy_error"), "rk4");
 }
 
 TEST(HorizonCli, BadOptionsExitWithTwo) {
