@@ -71,6 +71,23 @@ def _verdict_counts(report):
     return total, inconclusive, reasons
 
 
+def lower_line(report):
+    """The `lower` verdicts, counted by component and named by method and scene (slope of declared)."""
+    count, named = 0, []
+    for o in rp.orders(report):
+        parts = []
+        for c in rp.components(report):
+            if rp.verdict(o, c) == "lower":
+                declared = o.get("declared_rotation") if c == "rotation" else o.get("declared")
+                parts.append(f"{c} {md.fmt((o.get('observed') or {}).get(c))} of {declared}")
+        if parts:
+            count += len(parts)
+            named.append(f"{o['integrator']} on {o['scene']} ({', '.join(parts)})")
+    if not named:
+        return "- `lower` verdicts: none."
+    return f"- `lower` verdicts: {count} components: " + "; ".join(named) + "."
+
+
 def order_lines(report):
     total, inconclusive, reasons = _verdict_counts(report)
     if not total:
@@ -78,8 +95,12 @@ def order_lines(report):
     why = ", ".join(f"{n} {r}" for r, n in sorted(reasons.items(), key=lambda x: (-x[1], x[0])))
     lines = [f"- Orders: {total - inconclusive} of {total} component fits reach a verdict; {inconclusive} are "
              f"inconclusive" + (f" ({why})" if why else "") + ". \"too few points\": under 4 in the window; "
-             "\"floor\": as few because the runs reached 10 × the reference's error; \"wide interval\": 95 % "
-             "half-width above 0.3; \"straddles\": the interval holds declared − 0.2."]
+             "\"floor\": as few because the runs reached the plateau (100 × the reference's error or 10 × the "
+             "rounding level); \"wide interval\": 95 % half-width above 0.3; \"pre-asymptotic\": the halving "
+             "slopes still move and the ladder's limits were reached; \"no asymptotic range above the plateau\": "
+             "they still move where the plateau begins; \"straddles\": the interval holds declared − 0.2; "
+             "\"self-convergence disagrees\": the method against itself reads another slope."]
+    lines.append(lower_line(report))
     high = {}
     for o in rp.orders(report):
         if (o.get("declared") or 0) >= 8 and feeds_back(report, o["scene"]):

@@ -211,6 +211,7 @@ struct RunArgs {
   double dt_out = std::nan("");  // NaN: not given
   std::optional<double> t_end;   // given: checked, even "nan"
   bool no_stability = false;
+  bool no_finer_steps = false;  // keep the step ladder as given (a sharded sweep's ladder)
   // the horizon study (bench/lib/horizon.hpp): --horizon-steps enables it
   std::string horizon_steps, horizon_scenes, horizon_integrators;
   bool no_horizon = false;
@@ -283,6 +284,7 @@ int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_
   if (a.repeats >= 0) spec.repeats = a.repeats;
   if (a.jobs > 0) spec.jobs = a.jobs;
   if (a.no_stability) spec.stability.enabled = false;
+  if (a.no_finer_steps) spec.extend_ladders = false;
   for (const std::string& name : spec.stability.integrators)
     if (spec.stability.enabled) (void)rb::find_integrator(name);
   apply_horizon_options(a, spec.horizon);
@@ -466,6 +468,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--shard", run.shard, "i/n: run one slice of the sweep (join with `rollbench merge`)");
   run_cmd->add_option("--cache", run.cache, "directory for cached reference solutions");
   run_cmd->add_flag("--no-stability", run.no_stability, "skip the stability study of the preset");
+  run_cmd->add_flag("--no-finer-steps", run.no_finer_steps,
+                    "keep the step ladder as given: no finer steps for pre-asymptotic order fits");
   run_cmd->add_option("--horizon-steps", run.horizon_steps,
                       "run the horizon study with this many fixed steps per run, e.g. 1e5 or 1e6 (the default "
                       "preset's: 1e6; full: 1e7)");

@@ -64,6 +64,35 @@ class RunFields {
     }
     return out;
   }
+  // "final": contact, centre, omega and R (NaN where null)
+  ReferencePoint end_point() const {
+    const json& e = at(run_, "final", "");
+    if (!e.is_object()) refuse("final", "is not an object");
+    ReferencePoint p;
+    const auto vector = [&](const char* key, auto& out) {
+      const json& v = at(e, key, "final.");
+      const std::string path = std::string("final.") + key;
+      if (!v.is_array() || v.size() != static_cast<std::size_t>(out.size()))
+        refuse(path, "is not a list of " + std::to_string(out.size()) + " numbers");
+      for (std::size_t i = 0; i < v.size(); ++i) out[static_cast<Eigen::Index>(i)] = entry(v[i], path);
+    };
+    vector("contact", p.alpha);
+    vector("centre", p.centre);
+    vector("omega", p.omega);
+    const json& R = at(e, "R", "final.");
+    if (!R.is_array() || R.size() != 3) refuse("final.R", "is not 3 rows of 3 numbers");
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!R[i].is_array() || R[i].size() != 3) refuse("final.R", "is not 3 rows of 3 numbers");
+      for (std::size_t j = 0; j < 3; ++j)
+        p.R(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = entry(R[i][j], "final.R");
+    }
+    return p;
+  }
+  double entry(const json& v, const std::string& path) const {
+    if (v.is_null()) return kNaN;
+    if (!v.is_number()) refuse(path, "holds something that is not a number or null");
+    return v.get<double>();
+  }
   [[noreturn]] void refuse(const std::string& key, const std::string& problem) const {
     throw InputError(where_ + (key.empty() ? "" : "." + key) + " " + problem, "reports");
   }
@@ -86,6 +115,8 @@ FitRun fit_run_of(const json& run, const std::string& where) {
   r.stop_time = f.number_or_null(run, "stop_time");
   r.steps = f.integer("steps");
   r.error = f.errors("error");
+  r.ok = f.text("status") == "ok";
+  r.end = f.end_point();
   return r;
 }
 
@@ -105,6 +136,8 @@ FitRun fit_run(const RunRecord& record) {
   r.error.below_floor = record.error.below_floor;
   for (std::size_t i = 0; i < kErrorComponentCount; ++i) r.error.component(i) = as_reported(record.error.component(i));
   r.error.worst = as_reported(record.error.worst);
+  r.ok = record.status == Status::ok;
+  r.end = record.final_point;
   return r;
 }
 

@@ -20,7 +20,9 @@ struct FitRun {
   int declared_order = 0, declared_rotation_order = 0;
   double h = kNaN, rtol = kNaN, stop_time = kNaN;
   long steps = 0;
-  RunErrors error;  // at t_end: the components, worst and below_floor
+  RunErrors error;       // at t_end: the components, worst and below_floor
+  bool ok = false;       // status ok: the run reached t_end
+  ReferencePoint end{};  // the state at stop_time, in the error components (self-convergence compares two)
 };
 
 FitRun fit_run(const RunRecord& record);

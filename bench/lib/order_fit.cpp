@@ -55,8 +55,29 @@ LineFit least_squares(const Points& p, std::size_t lo, std::size_t hi) {
   return l;
 }
 
-double local_slope(const Points& p, std::size_t i) {
-  return (p[i + 1].second - p[i].second) / (p[i + 1].first - p[i].first);
+double local_slope_between(const Points& p, std::size_t i, std::size_t j) {
+  return (p[j].second - p[i].second) / (p[j].first - p[i].first);
+}
+
+double local_slope(const Points& p, std::size_t i) { return local_slope_between(p, i, i + 1); }
+
+// The slopes over successive halvings of h from the smallest step up: from
+// each point to the first at about twice its step (within 10 %: at large h
+// the steps taken, t_end / ceil(t_end / h), are off the ladder's values;
+// the slope uses the ratio itself), kHalvingSlopes at most; fewer where the
+// ladder has no such point.
+std::vector<double> halving_slopes(const Points& p) {
+  std::vector<double> slopes;
+  const double octave = std::log10(2.0), slack = std::log10(1.1);
+  std::size_t i = 0;
+  while (slopes.size() < static_cast<std::size_t>(kHalvingSlopes)) {
+    std::size_t j = i + 1;
+    while (j < p.size() && p[j].first < p[i].first + octave - slack) ++j;
+    if (j == p.size() || p[j].first > p[i].first + octave + slack) break;
+    slopes.push_back(local_slope_between(p, i, j));
+    i = j;
+  }
+  return slopes;
 }
 
 }  // namespace
@@ -69,7 +90,7 @@ LineFit fit_line(const std::vector<double>& x, const std::vector<double>& y) {
 }
 
 OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& error, double floor, double ceiling,
-                   std::size_t max_points) {
+                   std::size_t max_points, double span) {
   Points all;  // (h, error), by h ascending
   for (std::size_t i = 0; i < h.size() && i < error.size(); ++i)
     if (h[i] > 0.0) all.emplace_back(h[i], error[i]);
@@ -80,7 +101,8 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   int at_floor = 0;
   for (const auto& [step, e] : all) {
     if (e > ceiling) break;
-    if (std::isfinite(e) && e > 10.0 * floor && e > 0.0) p.emplace_back(std::log10(step), std::log10(e));
+    const double plateau = std::max(kFloorMultiple * floor, kRoundingMultiple * kRoundingPerStep * span / step);
+    if (std::isfinite(e) && e > plateau && e > 0.0) p.emplace_back(std::log10(step), std::log10(e));
     else if (std::isfinite(e)) ++at_floor;
   }
   OrderFit fit;
@@ -89,9 +111,11 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   fit.at_floor = at_floor;
   if (p.size() < 2) return fit;
 
+  fit.halving_slopes = halving_slopes(p);
+  fit.asymptotic =
+      fit.halving_slopes.size() == static_cast<std::size_t>(kHalvingSlopes) && slopes_agree(fit.halving_slopes);
   const std::size_t min_points = static_cast<std::size_t>(kMinOrderPoints);
-  std::size_t lo = 0;
-  while (p.size() - lo > min_points && local_slope(p, lo) < 0.5 * least_squares(p, lo + 1, p.size()).slope) ++lo;
+  const std::size_t lo = 0;
   // a caller may ask for fewer points than a verdict needs (a slope alone)
   max_points = std::max<std::size_t>(2, max_points);
   std::size_t hi = std::min(p.size(), lo + std::min(min_points, max_points));
@@ -120,21 +144,49 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   return fit;
 }
 
+bool slopes_agree(const std::vector<double>& slopes) {
+  if (slopes.empty()) return false;
+  const auto [least, most] = std::minmax_element(slopes.begin(), slopes.end());
+  const double middle = 0.5 * (*least + *most);
+  return 0.5 * (*most - *least) <= std::max(kHalvingAgreement, 0.05 * std::abs(middle));
+}
+
+bool pre_asymptotic(const OrderFit& fit) {
+  return fit.points >= kMinOrderPoints && std::isfinite(fit.slope) && !fit.asymptotic;
+}
+
+bool wants_finer_steps(const OrderFit& fit, int declared) {
+  if (fit.at_floor > 0) return false;
+  const std::string why = inconclusive_reason(fit, declared);
+  return why == "pre-asymptotic" || why == "straddles";
+}
+
 std::string inconclusive_reason(const OrderFit& fit, int declared) {
   if (order_verdict(fit, declared) != "inconclusive") return "";
   if (fit.points < kMinOrderPoints || !std::isfinite(fit.slope))
     return fit.at_floor > 0 && fit.points + fit.at_floor >= kMinOrderPoints ? "floor" : "too few points";
   if (!(fit.slope_ci95 <= kMaxHalfWidth)) return "wide interval";
+  if (pre_asymptotic(fit)) return fit.at_floor == 0 ? "pre-asymptotic" : "no asymptotic range above the plateau";
   return "straddles";
 }
 
 std::string order_verdict(const OrderFit& fit, int declared) {
-  if (fit.points < kMinOrderPoints || !std::isfinite(fit.slope) || !(fit.slope_ci95 <= kMaxHalfWidth))
+  if (fit.points < kMinOrderPoints || !std::isfinite(fit.slope) || !(fit.slope_ci95 <= kMaxHalfWidth) ||
+      pre_asymptotic(fit))
     return "inconclusive";
   const double bar = declared - kOrderTolerance;
   if (fit.slope - fit.slope_ci95 >= bar) return "as declared";
   if (fit.slope + fit.slope_ci95 < bar) return "lower";
   return "inconclusive";
+}
+
+OrderJudgement judge_order(const OrderFit& reference, const OrderFit& self, int declared) {
+  const std::string by_reference = order_verdict(reference, declared);
+  if (by_reference == "inconclusive") return {by_reference, inconclusive_reason(reference, declared)};
+  if (!std::isfinite(self.slope)) return {"inconclusive", "no self-convergence"};
+  if (std::abs(self.slope - reference.slope) > std::max(kSelfAgreement, 0.05 * declared))
+    return {"inconclusive", "self-convergence disagrees"};
+  return {by_reference, ""};
 }
 
 }  // namespace rb

@@ -31,20 +31,42 @@ struct OrderFit {
   double slope_ci95 = 0.0;  // half-width of the 95 % confidence interval of the slope
   double h_min = 0.0, h_max = 0.0;
   int points = 0;
-  int at_floor = 0;  // measured points left out for lying at or below 10 * floor
+  int at_floor = 0;  // measured points left out on the plateau (kFloorMultiple, kRoundingMultiple)
+  // the local slopes over successive halvings of h from the smallest step
+  // kept up (at most kHalvingSlopes): where they still move, the smallest
+  // steps are not yet asymptotic
+  std::vector<double> halving_slopes;
+  bool asymptotic = false;  // kHalvingSlopes halving slopes agree (slopes_agree)
 };
+
+// A point is on a plateau, left out of the fit, when its error is at most
+// kFloorMultiple x the reference's floor (so every fitted error is at least
+// that far above the reference) or kRoundingMultiple x the rounding level of
+// its run (kRoundingPerStep x steps, steps = span / h).
+inline constexpr double kFloorMultiple = 100.0;
+inline constexpr double kRoundingMultiple = 10.0;
+inline constexpr double kRoundingPerStep = 2.220446049250313e-16;  // one unit roundoff a step
+// The asymptotic range starts where this many successive halving slopes
+// agree within +- max(kHalvingAgreement, 0.05 p) of their mid-range p (the
+// window's own rule for a point joining it).
+inline constexpr int kHalvingSlopes = 3;
+inline constexpr double kHalvingAgreement = 0.15;
+// The halving slopes agree: within +- max(kHalvingAgreement, 0.05 p) of
+// their mid-range p (false for none).
+bool slopes_agree(const std::vector<double>& slopes);
 
 // A verdict needs at least this many points in its window.
 inline constexpr int kMinOrderPoints = 4;
 
-// h and error are paired. Points with a non-finite error or an error below
-// 10 * floor are left out, and so is every point from the smallest h whose
-// error passes ceiling upward (pre-asymptotic: a rotation angle or a length
-// of the scene's unit size has nothing left to converge). The window then
-// starts at the smallest steps, where the expansion in h holds best: the
-// smallest h is dropped while its local slope is below half that of the
-// rest (a rounding plateau), the window takes the kMinOrderPoints smallest
-// steps left, and a larger step joins it only while the local slope up to
+// h and error are paired. Points with a non-finite error, or on a plateau
+// (an error at most kFloorMultiple x floor or kRoundingMultiple x the
+// rounding level kRoundingPerStep x span / h; span 0: no rounding level),
+// are left out, and so is every point from the smallest h whose error passes ceiling
+// upward (pre-asymptotic: a rotation angle or a length of the scene's unit
+// size has nothing left to converge). No point is left out for its slope
+// alone: an order lost at small steps far above the plateau is fitted. The
+// window starts at the smallest steps, where the expansion in h holds best:
+// it takes the kMinOrderPoints smallest steps, and a larger step joins it only while the local slope up to
 // it stays within max(0.15, 0.05 p) of the window's slope p or, where the
 // window's 95 % interval is wider than that (noisy errors), while the fit
 // with it stays inside that interval; up to max_points (below
@@ -52,18 +74,45 @@ inline constexpr int kMinOrderPoints = 4;
 // pre-asymptotic large steps, whose slope drifts, stay out, and a verdict
 // rests on a slope its own interval does not contradict.
 OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& error, double floor = 0.0,
-                   double ceiling = 0.1, std::size_t max_points = 6);
+                   double ceiling = 0.1, std::size_t max_points = 6, double span = 0.0);
 
 // "as declared" when the 95 % interval of the slope lies above declared -
 // 0.2, "lower" when it lies below, "inconclusive" when it straddles that,
-// is wider than +-0.3 or rests on fewer than kMinOrderPoints points.
+// is wider than +-0.3, rests on fewer than kMinOrderPoints points, or when
+// the smallest steps are pre-asymptotic (pre_asymptotic).
 std::string order_verdict(const OrderFit& fit, int declared);
+
+// True when a fit with enough points has not shown its asymptotic range:
+// fewer than kHalvingSlopes halving slopes above the plateau, or slopes
+// that still move. A verdict either way waits for the asymptotic range: a
+// method that lost its order at small steps reads its order at large ones,
+// and a correct one reads low while its slopes still climb.
+bool pre_asymptotic(const OrderFit& fit);
+
+// True when a finer ladder could still decide: no point reached the
+// plateau, and the fit is pre-asymptotic or its interval straddles
+// declared - 0.2 (a slope still converging towards its order).
+bool wants_finer_steps(const OrderFit& fit, int declared);
 
 // Why a verdict is inconclusive: "too few points" (below kMinOrderPoints in
 // the window, or no fit), "floor" (as few, but only because points reached
-// the reference's floor: a finer ladder at large h would give them),
-// "wide interval" (half-width above 0.3) or "straddles" (the interval holds
-// declared - 0.2); empty for a verdict.
+// the plateau: a finer ladder at large h would give them), "wide interval"
+// (half-width above 0.3), "pre-asymptotic" (see pre_asymptotic; a finer
+// ladder would decide), "no asymptotic range above the plateau"
+// (pre-asymptotic, and the smallest steps reached the plateau) or
+// "straddles" (the interval holds declared - 0.2); empty for a verdict.
 std::string inconclusive_reason(const OrderFit& fit, int declared);
+
+// The verdict on a component from its reference-based fit and its
+// self-convergence fit (bench/lib/self_convergence.hpp): the reference
+// fit's verdict, where the self-convergence slope confirms it (within
+// +- max(kSelfAgreement, 0.05 declared) of the reference's slope);
+// otherwise "inconclusive" with the reason: the reference fit's own, "no
+// self-convergence" (no self slope) or "self-convergence disagrees".
+inline constexpr double kSelfAgreement = 0.3;
+struct OrderJudgement {
+  std::string verdict, reason;  // reason empty for a verdict
+};
+OrderJudgement judge_order(const OrderFit& reference, const OrderFit& self, int declared);
 
 }  // namespace rb

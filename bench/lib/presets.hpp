@@ -87,6 +87,10 @@ struct SweepSpec {
   int jobs = 2;                          // threads for the accuracy runs
   int shard_index = 0, shard_count = 1;  // this process runs the runs with index % count == index
   long max_steps = 5'000'000;
+  // halve the smallest step of a fixed-step method whose order fit is still
+  // pre-asymptotic, round after round (bench/lib/finer_steps.hpp); an
+  // unsharded sweep only: a shard does not see its method's other runs
+  bool extend_ladders = true;
   // the step-size controller of the adaptive methods that take one (i, pi,
   // pid; RunOptions::controller); empty: each method's own
   std::string controller;

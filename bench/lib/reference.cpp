@@ -2,6 +2,7 @@
 
 #include <openssl/evp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -149,9 +150,14 @@ ReferencePoint reference_point_of(const Problem& problem, const FlatState& y) {
   return {contact_of(y), d.centre, d.omega, rotation_of(y)};
 }
 
+std::array<double, kErrorComponentCount> component_distances(const ReferencePoint& a, const ReferencePoint& b) {
+  return {(a.alpha - b.alpha).norm(), (a.centre - b.centre).norm(), (a.omega - b.omega).norm(),
+          rotation_angle_between(a.R, b.R)};
+}
+
 double point_distance(const ReferencePoint& a, const ReferencePoint& b) {
-  return std::max({(a.alpha - b.alpha).norm(), (a.centre - b.centre).norm(), (a.omega - b.omega).norm(),
-                   rotation_angle_between(a.R, b.R)});
+  const auto d = component_distances(a, b);
+  return *std::max_element(d.begin(), d.end());
 }
 
 std::string code_version() {

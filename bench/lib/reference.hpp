@@ -8,10 +8,12 @@
 // replaces the computed one for every component it knows, and the computed
 // one checks it. References are cached on disk, keyed by the scene file's
 // content, the output grid and the code version.
+#include <array>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
+#include "bench/lib/error_components.hpp"
 #include "integrators/integrator.hpp"
 
 namespace rb {
@@ -40,10 +42,12 @@ struct Reference {
 
 // Which methods and settings make references: defaults in one place.
 struct ReferenceSettings {
-  std::string primary = "rkmk4";
-  std::string cross_check = "rk38";
-  double h = 1.0 / 16384.0;  // the primary's step; the cross-check takes h / 2
-  std::string cache_dir;     // empty: no caching
+  // order 8 on both sides, a Lie method and a flat one of another code: a
+  // floor near rounding, far below the smallest error in any fit window
+  std::string primary = "rkmk8";
+  std::string cross_check = "odeint-fehlberg78";
+  double h = 1.0 / 1024.0;  // the primary's step; the cross-check takes h / 2
+  std::string cache_dir;    // empty: no caching
 };
 
 // The reference of a problem on an output grid (increasing, ending at the
@@ -59,6 +63,11 @@ ReferencePoint reference_point_of(const Problem& problem, const FlatState& y);
 
 // Largest disagreement of two points over the four components.
 double point_distance(const ReferencePoint& a, const ReferencePoint& b);
+
+// The distance of two points in each error component, in the order of
+// kErrorComponents: contact, centre and omega by the Euclidean norm, the
+// rotation by the angle of a^T b (what every error is measured in).
+std::array<double, kErrorComponentCount> component_distances(const ReferencePoint& a, const ReferencePoint& b);
 
 // A cache entry's checksum: SHA-256 over its reference and what it is made
 // from. It holds no secret: it finds damage, and the content checks find forgeries.

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "bench/lib/group_orders.hpp"
 #include "bench/lib/json_input.hpp"
 #include "bench/lib/order_fit.hpp"
 #include "bench/lib/regime_scenes.hpp"
@@ -146,47 +147,51 @@ json run_json(const RunRecord& r, const std::string& reference_kind) {
   std::vector<double> samples = r.wall_samples;
   const Mat3 R = rotation_of(r.final_state);
   const MethodInfo& m = r.method;
-  return {{"index", r.index},
-          {"scene", r.scene},
-          {"integrator", m.name},
-          {"family", m.family},
-          {"declared_order", m.declared_order},
-          {"declared_rotation_order", m.rotation_order},
-          {"adaptive", m.adaptive},
-          {"needs_jacobian", m.needs_jacobian},
-          {"controller", r.controller},
-          {"tableau", m.tableau.empty() ? json(nullptr) : json(m.tableau)},
-          {"on_group", m.on_group},
-          {"h", number(r.h)},
-          {"rtol", number(r.rtol)},
-          {"atol", number(r.atol)},
-          {"status", std::string(status_name(r.status))},
-          {"message", r.message},
-          {"stop_time", r.stop_time},
-          {"steps", r.cost.steps},
-          {"rejected", r.cost.rejected},
-          {"rhs_evals", r.cost.rhs_evals},
-          {"jacobian_evals", r.cost.jacobian_evals},
-          {"exp_evals", r.cost.exp_evals},
-          {"dexpinv_evals", r.cost.dexpinv_evals},
-          {"validity_checks", r.cost.validity_checks},
-          {"wall_s",
-           {{"median", number(median(samples))},
-            {"min", number(samples.empty() ? kNaN : *std::min_element(samples.begin(), samples.end()))},
-            {"max", number(samples.empty() ? kNaN : *std::max_element(samples.begin(), samples.end()))},
-            {"repeats", samples.size()},
-            {"samples", samples}}},
-          {"timed_outputs", r.timed_outputs},
-          {"error", errors_json(r.error, reference_kind)},
-          {"error_max", errors_json(r.error_max, reference_kind)},
-          {"error_max_run", {{"same_steps", r.error_max_source.same_steps}, {"steps", r.error_max_source.steps}}},
-          {"error_grid", r.has_error_grid ? errors_json(r.error_grid, reference_kind) : json(nullptr)},
-          {"scd", number(r.error.scd)},
-          {"drift", {{"energy", number(r.energy_drift)}, {"rotation_defect", number(r.rotation_drift)}}},
-          {"final",
-           {{"t", r.stop_time},
-            {"contact", {r.final_state[kOffsetAlpha], r.final_state[kOffsetAlpha + 1]}},
-            {"R", {{R(0, 0), R(0, 1), R(0, 2)}, {R(1, 0), R(1, 1), R(1, 2)}, {R(2, 0), R(2, 1), R(2, 2)}}}}}};
+  return {
+      {"index", r.index},
+      {"scene", r.scene},
+      {"integrator", m.name},
+      {"family", m.family},
+      {"declared_order", m.declared_order},
+      {"declared_rotation_order", m.rotation_order},
+      {"adaptive", m.adaptive},
+      {"needs_jacobian", m.needs_jacobian},
+      {"controller", r.controller},
+      {"tableau", m.tableau.empty() ? json(nullptr) : json(m.tableau)},
+      {"on_group", m.on_group},
+      {"h", number(r.h)},
+      {"rtol", number(r.rtol)},
+      {"atol", number(r.atol)},
+      {"status", std::string(status_name(r.status))},
+      {"message", r.message},
+      {"stop_time", r.stop_time},
+      {"steps", r.cost.steps},
+      {"rejected", r.cost.rejected},
+      {"rhs_evals", r.cost.rhs_evals},
+      {"jacobian_evals", r.cost.jacobian_evals},
+      {"exp_evals", r.cost.exp_evals},
+      {"dexpinv_evals", r.cost.dexpinv_evals},
+      {"validity_checks", r.cost.validity_checks},
+      {"wall_s",
+       {{"median", number(median(samples))},
+        {"min", number(samples.empty() ? kNaN : *std::min_element(samples.begin(), samples.end()))},
+        {"max", number(samples.empty() ? kNaN : *std::max_element(samples.begin(), samples.end()))},
+        {"repeats", samples.size()},
+        {"samples", samples}}},
+      {"timed_outputs", r.timed_outputs},
+      {"error", errors_json(r.error, reference_kind)},
+      {"error_max", errors_json(r.error_max, reference_kind)},
+      {"error_max_run", {{"same_steps", r.error_max_source.same_steps}, {"steps", r.error_max_source.steps}}},
+      {"error_grid", r.has_error_grid ? errors_json(r.error_grid, reference_kind) : json(nullptr)},
+      {"scd", number(r.error.scd)},
+      {"drift", {{"energy", number(r.energy_drift)}, {"rotation_defect", number(r.rotation_drift)}}},
+      {"final",
+       {{"t", r.stop_time},
+        {"contact", {r.final_state[kOffsetAlpha], r.final_state[kOffsetAlpha + 1]}},
+        {"centre",
+         {number(r.final_point.centre.x()), number(r.final_point.centre.y()), number(r.final_point.centre.z())}},
+        {"omega", {number(r.final_point.omega.x()), number(r.final_point.omega.y()), number(r.final_point.omega.z())}},
+        {"R", {{R(0, 0), R(0, 1), R(0, 2)}, {R(1, 0), R(1, 1), R(1, 2)}, {R(2, 0), R(2, 1), R(2, 2)}}}}}};
 }
 
 namespace {
@@ -333,52 +338,54 @@ json fit_tolerances(const std::vector<FitRun>& runs) {
   return fits;
 }
 
+namespace {
+
+// A fit as a report holds it: the slope with its 95 % interval and window,
+// the halving slopes and whether they agree (asymptotic), null where no
+// slope was fitted.
+json order_fit_json(const OrderFit& fit) {
+  json j = {{"points", std::max(0, fit.points)},
+            {"at_plateau", fit.at_floor},
+            {"halving_slopes", fit.halving_slopes},
+            {"asymptotic", fit.asymptotic}};
+  if (!std::isfinite(fit.slope)) {
+    j["slope"] = nullptr;
+    j["ci95"] = nullptr;
+    return j;
+  }
+  j["slope"] = fit.slope;
+  j["ci95"] = number(fit.slope_ci95);
+  j["h_min"] = fit.h_min;
+  j["h_max"] = fit.h_max;
+  j["r2"] = fit.r2;
+  j["residual"] = fit.residual;
+  return j;
+}
+
+}  // namespace
+
 json fit_orders(const std::vector<FitRun>& runs, const ReferenceFloors& floors) {
   const RunGroups groups = group_runs(runs, false);
   json orders = json::array();
   for (const RunKey& key : groups.keys) {
     const std::vector<const FitRun*>& group = groups.members.at(key);
     const FitRun& first = *group.front();
-    json observed, ci95, fits, verdicts, reasons;
+    const auto found = floors.find(key.first);
+    const double floor = found != floors.end() ? found->second : 0.0;
+    const auto components = group_orders(group, floor);
+    json observed, ci95, fits, self, verdicts, reasons;
     bool lower = false, all_as_declared = true;
     for (std::size_t i = 0; i < kErrorComponentCount; ++i) {
       const std::string c = kErrorComponents[i].name;
-      std::vector<double> h, e;
-      const auto found = floors.find(key.first);
-      const double floor = found != floors.end() ? found->second : 0.0;
-      for (const FitRun* r : group) {
-        h.push_back(r->h);
-        // below the floor: null in the report, the floor here (counted, never fitted)
-        const std::vector<std::string>& below = r->error.below_floor;
-        const bool at_floor = std::find(below.begin(), below.end(), c) != below.end();
-        e.push_back(at_floor ? floor : r->error.component(i));
-      }
-      // up to 8 points: on the quarter-step ladder 6 span only 1.5 halvings
-      const OrderFit fit = fit_order(h, e, floor, 0.1, 8);
-      const int declared =
-          kErrorComponents[i].name == std::string("rotation") ? first.declared_rotation_order : first.declared_order;
-      // a higher order than declared is no failure: for odd-order flat-view
-      // methods the leading error in R is symmetric, so the rotation angle
-      // after projection converges one order faster
-      const std::string verdict = order_verdict(fit, declared);
-      verdicts[c] = verdict;
-      const std::string why = inconclusive_reason(fit, declared);
-      reasons[c] = why.empty() ? json(nullptr) : json(why);
-      lower = lower || verdict == "lower";
-      all_as_declared = all_as_declared && verdict == "as declared";
-      if (std::isfinite(fit.slope)) {
-        observed[c] = fit.slope;
-        ci95[c] = number(fit.slope_ci95);
-        fits[c] = {{"h_min", fit.h_min},
-                   {"h_max", fit.h_max},
-                   {"points", fit.points},
-                   {"r2", fit.r2},
-                   {"residual", fit.residual}};
-      } else {
-        observed[c] = nullptr;
-        ci95[c] = nullptr;
-        fits[c] = {{"points", std::max(0, fit.points)}};
-      }
+      const ComponentOrder& o = components[i];
+      verdicts[c] = o.judgement.verdict;
+      reasons[c] = o.judgement.reason.empty() ? json(nullptr) : json(o.judgement.reason);
+      lower = lower || o.judgement.verdict == "lower";
+      all_as_declared = all_as_declared && o.judgement.verdict == "as declared";
+      observed[c] = std::isfinite(o.reference.slope) ? json(o.reference.slope) : json(nullptr);
+      ci95[c] = std::isfinite(o.reference.slope) ? number(o.reference.slope_ci95) : json(nullptr);
+      fits[c] = order_fit_json(o.reference);
+      self[c] = order_fit_json(o.self);
     }
     orders.push_back({{"scene", key.first},
                       {"integrator", key.second},
@@ -388,6 +395,11 @@ json fit_orders(const std::vector<FitRun>& runs, const ReferenceFloors& floors) 
                       {"ci95", ci95},
                       {"fit", fits["contact"]},
                       {"fits", fits},
+                      {"self_convergence", self},
+                      {"plateau",
+                       {{"floor_multiple", kFloorMultiple},
+                        {"rounding_multiple", kRoundingMultiple},
+                        {"rounding_per_step", kRoundingPerStep}}},
                       {"verdict", verdicts},
                       {"inconclusive_reason", reasons},
                       {"pass", lower             ? json(false)

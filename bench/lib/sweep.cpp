@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "bench/lib/drift.hpp"
+#include "bench/lib/finer_steps.hpp"
 #include "bench/lib/integrate_safely.hpp"
 #include "bench/lib/regime_scenes.hpp"
 #include "bench/lib/trajectory_csv.hpp"
@@ -53,9 +54,7 @@ struct PointErrors {
 
 PointErrors point_errors(const SweepScene& s, const ReferencePoint& ref, const FlatState& y) {
   const ReferencePoint got = reference_point_of(s.problem, y);
-  PointErrors e{{(got.alpha - ref.alpha).norm(), (got.centre - ref.centre).norm(), (got.omega - ref.omega).norm(),
-                 rotation_angle_between(ref.R, got.R)},
-                0.0};
+  PointErrors e{component_distances(ref, got), 0.0};
   const double r = s.problem.model().params().radius;
   for (std::size_t i = 0; i < kErrorComponentCount; ++i)
     e.worst = std::max(e.worst, e.values[i] / scale_value(kErrorComponents[i].scale, r, s.omega_scale));
@@ -274,6 +273,7 @@ RunRecord run_task(const SweepScene& s, const SweepTask& task, long max_steps) {
   r.cost = run.cost;
   r.timed_outputs = output_count(s.problem, timed);
   r.final_state = run.final_state;
+  r.final_point = reference_point_of(s.problem, run.final_state);
   r.final_energy = s.problem.model().derived(run.final_state).energy;
   measure_end(s, run, r);
   const RunOptions grid = options_of(s, task, max_steps, s.times);
@@ -308,6 +308,7 @@ RunRecord run_task(const SweepScene& s, const SweepTask& task, long max_steps) {
       r.message = on_grid.message + " (met by the untimed run on the error grid)";
       r.stop_time = on_grid.stop_time;
       r.final_state = on_grid.final_state;
+      r.final_point = reference_point_of(s.problem, on_grid.final_state);
       r.final_energy = s.problem.model().derived(on_grid.final_state).energy;
       r.error = RunErrors{};
       r.error.floor = s.reference.error;
@@ -316,9 +317,12 @@ RunRecord run_task(const SweepScene& s, const SweepTask& task, long max_steps) {
   return r;
 }
 
-std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepScene>& scenes,
+namespace {
+
+// The runs of tasks: accuracy in parallel, then the timed repeats.
+std::vector<RunRecord> run_tasks(const SweepSpec& spec, const std::vector<SweepScene>& scenes,
+                                 const std::vector<SweepTask>& tasks,
                                  const std::function<void(const std::string&)>& progress) {
-  const std::vector<SweepTask> tasks = sweep_tasks(spec, scenes);
   std::vector<RunRecord> records(tasks.size());
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
@@ -404,6 +408,23 @@ std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepS
     }
   }
   report("timing", static_cast<std::size_t>(timed), static_cast<std::size_t>(timed), timing_start, "timed repeats");
+  return records;
+}
+
+}  // namespace
+
+std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepScene>& scenes,
+                                 const std::function<void(const std::string&)>& progress) {
+  std::vector<RunRecord> records = run_tasks(spec, scenes, sweep_tasks(spec, scenes), progress);
+  if (!spec.extend_ladders || spec.shard_count != 1) return records;
+  for (int round = 0; round < kMaxLadderExtensions; ++round) {
+    // unsharded: the indices so far are 0 .. size - 1
+    const std::vector<SweepTask> finer = finer_step_tasks(spec, scenes, records, records.size());
+    if (finer.empty()) break;
+    progress("orders: " + std::to_string(finer.size()) + " pre-asymptotic fits get a step half their smallest");
+    std::vector<RunRecord> more = run_tasks(spec, scenes, finer, progress);
+    records.insert(records.end(), more.begin(), more.end());
+  }
   return records;
 }
 

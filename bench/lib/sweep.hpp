@@ -82,6 +82,7 @@ struct RunRecord {
   double energy_drift = kNaN;    // max |H(t) - H(0)| over the error grid
   double rotation_drift = kNaN;  // max ||R^T R - I||_F over the error grid
   FlatState final_state = FlatState::Zero();
+  ReferencePoint final_point{};  // final_state in the error components
   double final_energy = kNaN;
 };
 

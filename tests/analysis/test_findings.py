@@ -129,6 +129,18 @@ class Findings(unittest.TestCase):
         total = len(syn.SCENES) * len(syn.FIXED) * 4
         self.assertIn(f"- Orders: {total - 4} of {total} component fits reach a verdict; 4 are inconclusive "
                       "(2 floor, 1 too few points, 1 wide interval)", text)
+        # the synthetic report's gsl-rk4 reads one order low on valley-sideways
+        self.assertIn("- `lower` verdicts: 4 components: gsl-rk4 on valley-sideways (contact 3 of 4, centre 3 of 4, "
+                      "omega 3 of 4, rotation 3 of 4).", text)
+
+    def test_lower_verdicts_are_counted_and_named(self):
+        report = copy.deepcopy(self.report)
+        for o in report["orders"]:
+            if (o["scene"], o["integrator"]) == ("plane", "rkmk8"):
+                o["verdict"]["rotation"] = "lower"
+                o["observed"]["rotation"] = 5.123
+        text = "\n".join(findings.findings_section(report))
+        self.assertIn("- `lower` verdicts: 5 components: rkmk8 on plane (rotation 5.12 of 8); gsl-rk4 on", text)
 
     def test_best_of_family_is_the_cheapest_over_the_range(self):
         # b has the most points on the family's front, a is cheaper over the accuracy range

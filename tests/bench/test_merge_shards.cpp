@@ -59,7 +59,14 @@ TEST(MergeShards, ARunTheFitsCannotReadNamesItsFileAndKey) {
                     {"h", 0.5},
                     {"rtol", nullptr},
                     {"stop_time", 1.0},
+                    {"status", "ok"},
                     {"steps", 2},
+                    {"final",
+                     {{"t", 1.0},
+                      {"contact", {0.0, 0.0}},
+                      {"centre", {0.0, 0.0, 0.1}},
+                      {"omega", {0.0, 0.0, nullptr}},
+                      {"R", {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}}}},
                     {"error",
                      {{"contact", 1e-3},
                       {"centre", 1e-3},
@@ -84,6 +91,13 @@ TEST(MergeShards, ARunTheFitsCannotReadNamesItsFileAndKey) {
   json text_h = run;
   text_h["h"] = "0.5";
   EXPECT_EQ(merged_with(text_h), "'reports': the report 'b.json': runs[0].h is not a number or null");
+  json no_status = run;
+  no_status.erase("status");
+  EXPECT_EQ(merged_with(no_status), "'reports': the report 'b.json': runs[0].status is missing");
+  json short_centre = run;
+  short_centre["final"]["centre"] = {0.0, 0.0};
+  EXPECT_EQ(merged_with(short_centre),
+            "'reports': the report 'b.json': runs[0].final.centre is not a list of 3 numbers");
   json float_steps = run;
   float_steps["steps"] = 2.5;
   EXPECT_EQ(merged_with(float_steps), "'reports': the report 'b.json': runs[0].steps is not an integer");

@@ -113,7 +113,7 @@ submit() { timeout "$limit" "$root/scripts/slurm/submit.sh" "$@"; }
 same_accuracy() { /usr/bin/python3 "$root/tests/slurm/same_accuracy.py" "$@"; }
 
 # 1. three shards against the unsharded run
-"$rollbench" run --preset quick --out "$tmp/whole.json" >/dev/null 2>&1
+"$rollbench" run --preset quick --no-finer-steps --out "$tmp/whole.json" >/dev/null 2>&1
 ROLLBENCH="$rollbench" submit --dir "$tmp/study" --shards 3 --wait -- --preset quick | tee "$tmp/submit.out" \
   || fail "the sharded study did not complete (exit ${PIPESTATUS[0]})"
 grep -Eq '^slurm: [0-9]+ s: shards done [0-3]/3, running [0-3], pending [0-3]' "$tmp/submit.out" \
@@ -148,7 +148,7 @@ grep -qF "rollbench: 'reports': shard 1 of 3 is missing (given: 0, 2)" "$tmp/stu
   || fail "the merge did not name the missing shard"
 echo "== ok: a failed shard leaves the others' reports and the merge names shard 1"
 ROLLBENCH="$rollbench" submit --dir "$tmp/study2" --only 1 --no-plot --wait || fail "rerunning shard 1 failed"
-"$rollbench" run "${small[@]}" --out "$tmp/whole2.json" >/dev/null 2>&1
+"$rollbench" run "${small[@]}" --no-finer-steps --out "$tmp/whole2.json" >/dev/null 2>&1
 same_accuracy "$tmp/whole2.json" "$tmp/study2/report.json" || fail "the completed study differs from the unsharded run"
 echo "== ok: --only 1 completed the study, equal to the unsharded run"
 
@@ -156,7 +156,7 @@ echo "== ok: --only 1 completed the study, equal to the unsharded run"
 regime=(--preset regime --regime "inertia=1,3;spin=5,50;roughness=0.3;t_end=0.5"
   --integrators rk4,rkmk4,odeint-dopri5-adaptive,rkmk-dp54-adaptive --h 2^-3..2^-7 --tol 1e-4,1e-6,1e-8,1e-10
   --repeats 1)
-"$rollbench" run "${regime[@]}" --out "$tmp/regime-whole.json" >/dev/null 2>&1 || fail "the unsharded regime run failed"
+"$rollbench" run "${regime[@]}" --no-finer-steps --out "$tmp/regime-whole.json" >/dev/null 2>&1 || fail "the unsharded regime run failed"
 ROLLBENCH="$rollbench" submit --dir "$tmp/study3" --shards 3 --wait -- "${regime[@]}" \
   || fail "the sharded regime study did not complete"
 same_accuracy "$tmp/regime-whole.json" "$tmp/study3/report.json" || fail "the merged regime report differs"

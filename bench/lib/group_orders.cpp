@@ -1,0 +1,49 @@
+#include "bench/lib/group_orders.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "bench/lib/self_convergence.hpp"
+
+namespace rb {
+
+std::array<ComponentOrder, kErrorComponentCount> group_orders(const std::vector<const FitRun*>& group, double floor) {
+  std::array<ComponentOrder, kErrorComponentCount> out;
+  if (group.empty()) return out;
+  const FitRun& first = *group.front();
+  // the time span sets each run's rounding level (kRoundingPerStep per step)
+  double span = 0.0;
+  for (const FitRun* r : group)
+    if (r->ok) span = std::max(span, r->stop_time);
+  const std::vector<SelfDifference> self = self_differences(group);
+  for (std::size_t i = 0; i < kErrorComponentCount; ++i) {
+    const std::string c = kErrorComponents[i].name;
+    std::vector<double> h, e;
+    for (const FitRun* r : group) {
+      h.push_back(r->h);
+      // below the floor: null in the report, the floor here (counted, never fitted)
+      const std::vector<std::string>& below = r->error.below_floor;
+      const bool at_floor = std::find(below.begin(), below.end(), c) != below.end();
+      e.push_back(at_floor ? floor : r->error.component(i));
+    }
+    std::vector<double> self_h, self_d;
+    for (const SelfDifference& d : self) self_h.push_back(d.h), self_d.push_back(d.distance[i]);
+    ComponentOrder& o = out[i];
+    // a higher order than declared is no failure: for odd-order flat-view
+    // methods the leading error in R is symmetric, so the rotation angle
+    // after projection converges one order faster
+    o.declared = c == "rotation" ? first.declared_rotation_order : first.declared_order;
+    o.reference = fit_order(h, e, floor, kOrderCeiling, kOrderWindowPoints, span);
+    // no reference, so no floor: rounding alone ends the self-convergence
+    o.self = fit_order(self_h, self_d, 0.0, kOrderCeiling, kOrderWindowPoints, span);
+    o.judgement = judge_order(o.reference, o.self, o.declared);
+  }
+  return out;
+}
+
+bool wants_finer_steps(const std::array<ComponentOrder, kErrorComponentCount>& orders) {
+  return std::any_of(orders.begin(), orders.end(),
+                     [](const ComponentOrder& o) { return wants_finer_steps(o.reference, o.declared); });
+}
+
+}  // namespace rb

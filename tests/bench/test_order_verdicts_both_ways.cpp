@@ -1,0 +1,160 @@
+// Order verdicts that hold both ways (docs/usage.md, "Observed orders"): a
+// method that loses its order at small steps far above the plateau is not
+// certified; a rounding plateau is left out only at the rounding level;
+// smallest steps whose halving slopes still move decide nothing and ask for
+// a finer ladder; self-convergence confirms the reference's slope.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "bench/lib/fit_run.hpp"
+#include "bench/lib/order_fit.hpp"
+#include "bench/lib/self_convergence.hpp"
+
+namespace rb {
+namespace {
+
+// the default preset's ladder shape: quarter steps 2^0 .. 2^-8, then 2^-9 .. 2^-to
+std::vector<double> ladder(int to) {
+  std::vector<double> h;
+  for (int k = 0; k <= 32; ++k) h.push_back(std::exp2(-k / 4.0));
+  for (int k = 9; k <= to; ++k) h.push_back(std::ldexp(1.0, -k));
+  return h;
+}
+
+template <class F>
+std::vector<double> errors(const std::vector<double>& h, F&& f) {
+  std::vector<double> e;
+  for (double x : h) e.push_back(f(x));
+  return e;
+}
+
+TEST(OrderVerdictsBothWays, AnOrderLostAtSmallStepsFarAboveTheFloorIsNotCertified) {
+  // the perturbed RK4: 1e-2 h^4 + 2.5e-6 h, of slope 1 below h ~ 0.03
+  // at errors near 1e-8, four decades above the floor (1e-13)
+  const std::vector<double> h = ladder(14);
+  const auto e = errors(h, [](double x) { return 1e-2 * std::pow(x, 4) + 2.5e-6 * x; });
+  const OrderFit fit = fit_order(h, e, 1e-13, 0.1, 8, 1.0);
+  EXPECT_NEAR(fit.slope, 1.0, 0.05);
+  EXPECT_EQ(fit.at_floor, 0);
+  EXPECT_TRUE(fit.asymptotic);
+  EXPECT_EQ(order_verdict(fit, 4), "lower");
+}
+
+TEST(OrderVerdictsBothWays, AMethodThatDoesNotConvergeIsNeverAsDeclared) {
+  // sum b = 1 + 9e-7: a plateau at 1.5e-5, far above floor and rounding
+  const std::vector<double> h = ladder(12);
+  const auto e = errors(h, [](double x) { return 1e-2 * std::pow(x, 4) + 1.5e-5; });
+  const OrderFit fit = fit_order(h, e, 1e-13, 0.1, 8, 5.0);
+  EXPECT_LT(fit.slope, 0.5);
+  EXPECT_NE(order_verdict(fit, 4), "as declared");
+}
+
+TEST(OrderVerdictsBothWays, ARoundingRiseIsLeftOutOnlyAtTheRoundingLevel) {
+  // order 5 down to a rounding rise of 0.3 eps per step over a span of 10:
+  // within 10 x the rounding level those points are left out, and the
+  // slope above them is the method's
+  const std::vector<double> h = ladder(14);
+  const double span = 10.0;
+  const auto e = errors(h, [&](double x) { return 1e-1 * std::pow(x, 5) + 0.3 * kRoundingPerStep * span / x; });
+  const OrderFit fit = fit_order(h, e, 0.0, 0.1, 8, span);
+  EXPECT_GT(fit.at_floor, 0);
+  EXPECT_NEAR(fit.slope, 5.0, 0.1);
+  EXPECT_EQ(order_verdict(fit, 5), "as declared");
+  // told no span, nothing marks the rise: it is fitted, and no verdict certifies order 5
+  EXPECT_NE(order_verdict(fit_order(h, e, 0.0, 0.1, 8, 0.0), 5), "as declared");
+}
+
+// order 4 below a sixth-order term that leads at large steps: the halving
+// slopes fall from 6 towards 4 (4.9, 4.3, 4.1 at h = 2^-4 .. 2^-6)
+double order_four_below_six(double x) { return 1e-3 * std::pow(x, 4) + 1e-1 * std::pow(x, 6); }
+
+TEST(OrderVerdictsBothWays, MovingHalvingSlopesArePreAsymptoticAndAskForFinerSteps) {
+  std::vector<double> h;
+  for (int k = 0; k <= 24; ++k) h.push_back(std::exp2(-k / 4.0));
+  const OrderFit coarse = fit_order(h, errors(h, order_four_below_six), 1e-16, 0.1, 8, 1.0);
+  ASSERT_EQ(coarse.halving_slopes.size(), 3u);
+  EXPECT_FALSE(coarse.asymptotic);
+  EXPECT_TRUE(pre_asymptotic(coarse));
+  EXPECT_EQ(order_verdict(coarse, 4), "inconclusive");
+  EXPECT_EQ(inconclusive_reason(coarse, 4), "pre-asymptotic");
+  EXPECT_TRUE(wants_finer_steps(coarse, 4));
+  // six more halvings: the slopes settle near 4 and decide
+  for (int k = 7; k <= 12; ++k) h.push_back(std::ldexp(1.0, -k));
+  const OrderFit fine = fit_order(h, errors(h, order_four_below_six), 1e-16, 0.1, 8, 1.0);
+  ASSERT_EQ(fine.halving_slopes.size(), 3u);
+  EXPECT_TRUE(fine.asymptotic);
+  EXPECT_NEAR(fine.slope, 4.0, 0.1);  // the window reaches up to 0.15 off its slope
+  EXPECT_EQ(order_verdict(fine, 4), "as declared");
+  EXPECT_FALSE(wants_finer_steps(fine, 4));
+}
+
+TEST(OrderVerdictsBothWays, MovingSlopesThatMeetThePlateauHaveNoVerdict) {
+  // the same errors, but a floor at 1e-12 ends the ladder before the
+  // slopes settle: no verdict, and no finer step can help
+  std::vector<double> h;
+  for (int k = 0; k <= 40; ++k) h.push_back(std::exp2(-k / 4.0));
+  const OrderFit fit = fit_order(h, errors(h, order_four_below_six), 1e-12, 0.1, 8, 1.0);
+  EXPECT_GT(fit.at_floor, 0);
+  EXPECT_EQ(order_verdict(fit, 4), "inconclusive");
+  EXPECT_EQ(inconclusive_reason(fit, 4), "no asymptotic range above the plateau");
+  EXPECT_FALSE(wants_finer_steps(fit, 4));
+}
+
+OrderFit no_fit() {
+  OrderFit fit;
+  fit.slope = NAN;
+  return fit;
+}
+
+OrderFit settled(double slope) {
+  OrderFit fit;
+  fit.points = 6;
+  fit.asymptotic = true;
+  fit.slope = slope;
+  fit.slope_ci95 = 0.05;
+  return fit;
+}
+
+TEST(OrderVerdictsBothWays, SelfConvergenceConfirmsTheReferenceSlopeOrWithholdsTheVerdict) {
+  EXPECT_EQ(judge_order(settled(4.0), settled(4.1), 4).verdict, "as declared");
+  EXPECT_EQ(judge_order(settled(1.0), settled(1.05), 4).verdict, "lower");
+  // a reference that reads 4 where the method's own halvings read 3: no verdict
+  const OrderJudgement disagree = judge_order(settled(4.0), settled(3.0), 4);
+  EXPECT_EQ(disagree.verdict, "inconclusive");
+  EXPECT_EQ(disagree.reason, "self-convergence disagrees");
+  const OrderJudgement none = judge_order(settled(4.0), no_fit(), 4);
+  EXPECT_EQ(none.verdict, "inconclusive");
+  EXPECT_EQ(none.reason, "no self-convergence");
+  // the reference fit's own reason comes first
+  EXPECT_EQ(judge_order(no_fit(), settled(4.0), 4).reason, "too few points");
+}
+
+FitRun run_at(double h, double x, bool ok = true) {
+  FitRun r;
+  r.h = h;
+  r.ok = ok;
+  r.stop_time = 2.0;
+  r.end.alpha = Vec2(x, 0.0);
+  r.end.centre = Vec3(x, 0.0, 0.1);
+  r.end.omega = Vec3::Zero();
+  r.end.R = Mat3::Identity();
+  return r;
+}
+
+TEST(SelfConvergence, PairsEachRunWithItsHalfStepOnly) {
+  // ends x(h) = 1 + h^2: D(h) = h^2 - h^2 / 4
+  const FitRun a = run_at(0.5, 1.25), b = run_at(0.25, 1.0625), c = run_at(0.125, 1.015625);
+  const FitRun odd = run_at(0.3, 1.09);              // no partner at 0.15
+  const FitRun failed = run_at(0.0625, 7.0, false);  // stopped: no pair with c
+  const std::vector<SelfDifference> d = self_differences({&odd, &a, &c, &b, &failed});
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_DOUBLE_EQ(d[0].h, 0.25);
+  EXPECT_DOUBLE_EQ(d[0].distance[0], 0.0625 - 0.015625);
+  EXPECT_DOUBLE_EQ(d[1].h, 0.5);
+  EXPECT_DOUBLE_EQ(d[1].distance[0], 0.25 - 0.0625);
+  EXPECT_DOUBLE_EQ(d[1].distance[3], 0.0);  // the same rotation
+}
+
+}  // namespace
+}  // namespace rb
