@@ -118,9 +118,23 @@ def slope_guides(ax, x_anchor, y_anchor, slopes, var="h", at="right", floor=0.0)
     ax.set_ylim(ylo, yhi)
 
 
-def _order_label(order, component):
+def order_label(order, component):
+    """'p = 4.01 ± 0.02, as declared': the report's fit with its 95 % interval and verdict, never a bare slope.
+
+    ci95 is a half-width or [low, high] (docs/formats.md); without an
+    interval the order is not shown, since a slope alone cannot be judged.
+    """
     value = rp.observed(order, component)
-    return f"p = {value:.2f}" if math.isfinite(value) else "p: no fit"
+    if not math.isfinite(value):
+        return "p: no fit"
+    ci = ((order.get("ci95") or {}).get(component))
+    if isinstance(ci, list) and len(ci) == 2 and all(math.isfinite(rp.num(c)) for c in ci):
+        interval = f"p = {value:.2f} [{rp.num(ci[0]):.2f}, {rp.num(ci[1]):.2f}]"
+    elif math.isfinite(rp.num(ci)):
+        interval = f"p = {value:.2f} ± {rp.num(ci):.2f}"
+    else:
+        return f"p: no interval, {rp.verdict(order, component)}"
+    return f"{interval}, {rp.verdict(order, component)}"
 
 
 def convergence(report, scene, palette):
@@ -142,7 +156,7 @@ def convergence(report, scene, palette):
             h, e = positive([rp.num(r.get("h")) for r in good], [rp.error(r, component) for r in good])
             style = palette.style(name)
             failed = len(mine) - len(good)
-            label = f"{name}  {_order_label(orders.get(name), component)}" + (f"  [{failed} failed]" if failed else "")
+            label = f"{name}  {order_label(orders.get(name), component)}" + (f"  [{failed} failed]" if failed else "")
             ax.plot(h, e, label=label, markersize=4.5, linewidth=1.3, **style)
             # below the floor: drawn on the floor, hollow, so the reader sees the run was there
             low = [rp.num(r.get("h")) for r in good if rp.below_floor(r, component)]
@@ -170,7 +184,8 @@ def convergence(report, scene, palette):
                 h_top = max(h for h, _ in points)
                 e_top = np.exp(np.mean([np.log(e) for h, e in points if h == h_top]))
                 slope_guides(ax, h_top, float(e_top) / 4, [p], at="left", floor=floor)
-        legend_right(ax, title="observed order p (fit)")
+        legend_right(ax, title="fitted order p ± 95 % interval, the runner's verdict\n(as declared / lower / "
+                               "inconclusive; the report's orders)")
     axes[-1].set_xlabel("step size h (s)")
     power_of_two_ticks(axes[-1], [rp.num(r.get("h")) for r in fixed])
     return fig

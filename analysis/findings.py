@@ -5,7 +5,7 @@ flat/Lie pair the flat/Lie time ratio with its spread over the timed
 repeats; then what the order study could and could not decide."""
 import math
 
-from analysis import costs, frontier, horizon, pairs, regime
+from analysis import answer, costs, frontier, horizon, pairs, regime
 from analysis import markdown as md
 from analysis import report as rp
 
@@ -159,18 +159,16 @@ def scene_line(scene, cells):
             f"{values[-1]:.2f} (median {values[len(values) // 2]:.2f}; repeats span {low:.2f}–{high:.2f}).")
 
 
-def answer_lines(answers):
-    """The first screen's answer: does keeping R on SO(3) pay, where, and by how much ([(scene, ratios)])."""
-    measured = [(scene, v[len(v) // 2]) for scene, v in answers if v]
-    if not measured:
-        return []
-    wins = [f"{s} ({m:.2f})" for s, m in measured if m > 1]
-    loses = [f"{s} ({m:.2f})" for s, m in measured if m <= 1]
-    text = (f"**Where R feeds back, keeping R on SO(3) pays on {len(wins)} of {len(measured)} scenes** (median "
-            "flat/Lie wall time to the same worst error over the run, above 1: the Lie method is cheaper)"
-            + (f": {', '.join(wins)}." if wins else "."))
-    text += f" The flat method wins on {', '.join(loses)}." if loses else " The flat method wins on none."
-    return [text, ""]
+def answer_lines(answers, metric=rp.DEFAULT_METRIC):
+    """The first screen's answer: does keeping R on SO(3) pay, where, and by how much ([(scene, cells)])."""
+    return answer.lines(answers, metric)
+
+
+def scene_answers(report, metric=rp.DEFAULT_METRIC):
+    """[(scene, cells)] per scene where R feeds back, read as the findings read them (error_max)."""
+    with rp.errors_read("max"):
+        return [(scene, aggregate_cells(report, scene, metric, pair_ratios(report, scene, metric))[0])
+                for scene in rp.scenes(report) if rp.runs(report, scene) and feeds_back(report, scene)]
 
 
 def frontier_lines(report, scenes, metric):
@@ -187,13 +185,17 @@ def frontier_lines(report, scenes, metric):
             f"families {families}; below 1 the Lie method is cheaper; the goal is ≤ {frontier.GOAL}): {text}."]
 
 
-def findings_section(report, metric=rp.DEFAULT_METRIC):
-    """The findings read the worst error over the run (error_max), whatever the tables read."""
+def findings_section(report, metric=rp.DEFAULT_METRIC, figure=()):
+    """The findings read the worst error over the run (error_max), whatever the tables read.
+
+    figure: lines put right after the answer when it has a measured ratio
+    (summary.md's answer.png), before any definition.
+    """
     with rp.errors_read("max"):
-        return _findings_section(report, metric)
+        return _findings_section(report, metric, list(figure))
 
 
-def _findings_section(report, metric=rp.DEFAULT_METRIC):
+def _findings_section(report, metric=rp.DEFAULT_METRIC, figure=()):
     lines = [HEADING, ""]
     scenes = [s for s in rp.scenes(report) if rp.runs(report, s)]
     if not scenes:
@@ -220,7 +222,7 @@ def _findings_section(report, metric=rp.DEFAULT_METRIC):
         exact_lines += [f"{lie} on {scene}" for lie in exact]
         if feeds_back(report, scene):
             per_scene.append(scene_line(scene, cells))
-            answers.append((scene, sorted(r[0] for *_, r in cells)))
+            answers.append((scene, cells))
         for flat, lie, tableau, ratios in scene_ratios:
             if not any(math.isfinite(ratios[t][0]) for t in costs.TARGETS):
                 unreached += 1  # neither target reached by both: nothing to compare here
@@ -244,7 +246,7 @@ def _findings_section(report, metric=rp.DEFAULT_METRIC):
                      + ", ".join(exact_lines) + ".")
     if bounded:
         lines.append(f"- Bounds, not counted ({len(bounded)}): " + "; ".join(bounded) + ".")
-    lines[2:2] = answer_lines(answers)
+    lines[2:2] = answer_lines(answers, metric) + (list(figure) if answer.measured(answers) else [])
     lines += frontier_lines(report, scenes, metric)
     lines += regime.findings_lines(report, metric) + order_lines(report) + horizon.finding_lines(report) + [""]
     lines += ["### Cheapest method by wall time", ""]

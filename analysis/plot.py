@@ -5,14 +5,16 @@
                      [--perf PERF.json] [--trajectories DIR] [--ball DIR] [--scenes DIR]
                      [--rollbench PATH] [--scene-figures]
 
-Writes per scene convergence-, work-precision-, work-precision-best-,
-tolerance- and drift-<scene>.png (for a regime study only with
+Writes answer.png (flat/Lie per scene where R feeds back: the first
+screen's figure), per scene convergence-, work-precision-,
+work-precision-best-, tolerance- and drift-<scene>.png (for a regime study only with
 --scene-figures), regime-<target>.png (analysis/regime.py) and
 horizon-<scene>.png per scene of the horizon study; then stability.png, scenes.png,
-ball-deforms.png (with --ball), ns-per-step.png (with --perf), summary.md
-and index.html (every figure and the summary in one page). A figure whose
-data the report lacks is skipped with a message; the exit status is 0
-unless the input cannot be read (2).
+ball-deforms.png (with --ball), ns-per-step.png (with --perf), summary.md,
+index.html (the answer, its figure, the other figures with captions and the
+summary) and all-methods.html (the every-method work-precision charts).
+A figure whose data the report lacks is skipped with a message; the exit
+status is 0 unless the input cannot be read (2).
 """
 import argparse
 import json
@@ -25,8 +27,9 @@ if __package__ in (None, ""):
     _root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     sys.path[0] = _root
 
-from analysis import figures, figures_ball, figures_overview, figures_precision, html, landscape  # noqa: E402
-from analysis import horizon, regime, style, summary  # noqa: E402
+from analysis import figures, figures_answer, figures_ball, figures_overview, figures_precision  # noqa: E402
+from analysis import html, landscape  # noqa: E402
+from analysis import answer, horizon, regime, style, summary  # noqa: E402
 from analysis import report as rp  # noqa: E402
 
 DEFAULT_SCENES = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "problems", "scenes")
@@ -63,6 +66,8 @@ def build_figures(report, options=None, messages=None, log=None):
             messages.append(f"skipped {name}: {e}")
 
     metric = options.metric
+    # the first screen's figure, from the cells the answer sentences count
+    attempt(answer.FIGURE, lambda: figures_answer.answer_figure(report, metric))
     scenes = rp.scenes(report)
     if not scenes:
         messages.append("the report has no runs and no stability results: no per-scene figures")
@@ -121,8 +126,11 @@ def write_all(report, out_dir, options=None, log=print, figures_out=None):
             continue
         written.append(path)
     text = summary.summary_markdown(report, options.metric)
-    for name, content in (("summary.md", text),
-                          ("index.html", html.index_html([os.path.basename(p) for p in written], text))):
+    names = [os.path.basename(p) for p in written]
+    pages = [("summary.md", text), ("index.html", html.index_html(names, text))]
+    if any(html.all_methods(n) for n in names):
+        pages.append((html.ALL_METHODS_PAGE, html.all_methods_html(names)))
+    for name, content in pages:
         path = os.path.join(out_dir, name)
         with open(path, "w", encoding="utf-8") as f:
             f.write(content)

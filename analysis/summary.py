@@ -5,7 +5,7 @@ import math
 
 import re
 
-from analysis import costs, findings, horizon, pairs, regime
+from analysis import answer, costs, findings, horizon, pairs, regime
 from analysis import markdown as md
 from analysis import report as rp
 
@@ -214,7 +214,8 @@ def failure_counts(report):
 
 
 def summary_markdown(report, metric=rp.DEFAULT_METRIC):
-    top = ["# rollbench summary", ""] + findings.findings_section(report, metric)
+    # the answer, then answer.png (plot.py draws it from the same cells), then the definitions
+    top = ["# rollbench summary", ""] + findings.findings_section(report, metric, figure=answer.figure_lines())
     body = (header_section(report, metric) + regime.regime_section(report, metric) + orders_section(report)
             + costs.cost_section(report, metric)
             + pairs.pairs_section(report, metric) + tolerance_section(report) + stability_section(report)

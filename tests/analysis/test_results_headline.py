@@ -49,7 +49,7 @@ class Answer(unittest.TestCase):
     def test_lie_wins(self):
         text = self.opening(slowed(syn.make_report(), False, 100.0))
         self.assertTrue(text.startswith("**Where R feeds back, keeping R on SO(3) pays on 1 of 1 scenes**"), text)
-        self.assertTrue(text.endswith("The flat method wins on none."), text)
+        self.assertIn(" The flat method wins on none. ", text)
 
 
 if __name__ == "__main__":
