@@ -126,7 +126,7 @@ def order_label(order, component):
     """
     value = rp.observed(order, component)
     if not math.isfinite(value):
-        return "p: no fit"
+        return "exact: every step on the plateau" if rp.verdict(order, component) == "exact" else "p: no fit"
     ci = ((order.get("ci95") or {}).get(component))
     if isinstance(ci, list) and len(ci) == 2 and all(math.isfinite(rp.num(c)) for c in ci):
         interval = f"p = {value:.2f} [{rp.num(ci[0]):.2f}, {rp.num(ci[1]):.2f}]"
@@ -184,7 +184,7 @@ def convergence(report, scene, palette):
                 h_top = max(h for h, _ in points)
                 e_top = np.exp(np.mean([np.log(e) for h, e in points if h == h_top]))
                 slope_guides(ax, h_top, float(e_top) / 4, [p], at="left", floor=floor)
-        legend_right(ax, title="fitted order p ± 95 % interval, the runner's verdict\n(as declared / lower / "
+        legend_right(ax, title="fitted order p ± 95 % interval, the runner's verdict\n(as declared / lower / exact / "
                                "inconclusive; the report's orders)")
     axes[-1].set_xlabel("step size h (s)")
     power_of_two_ticks(axes[-1], [rp.num(r.get("h")) for r in fixed])

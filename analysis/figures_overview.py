@@ -189,6 +189,23 @@ def _scene_panel(ax, fig, scene, path, values):
                 va="top", bbox={"facecolor": "white", "alpha": 0.7, "linewidth": 0})
 
 
+def scene_files(report, scene_dir):
+    """{scene name: its JSON file}: the files the run was given (`options.scenes`, as typed, read from
+    here), each under the `name` it holds; a shipped scene's name is looked up in scene_dir."""
+    files = {}
+    for given in (report.get("options") or {}).get("scenes") or []:
+        if not isinstance(given, str) or not given.endswith(".json") or not os.path.isfile(given):
+            continue
+        try:
+            with open(given, encoding="utf-8") as f:
+                name = json.load(f).get("name")
+        except (OSError, ValueError, AttributeError):
+            continue
+        if isinstance(name, str):
+            files.setdefault(name, given)
+    return files
+
+
 def scenes(report, scene_dir, trajectory_dir=None, messages=None, rollbench=landscape.DEFAULT_ROLLBENCH):
     """Each scene's landscape as shaded contours, with the contact-point path where a CSV is given.
 
@@ -198,9 +215,10 @@ def scenes(report, scene_dir, trajectory_dir=None, messages=None, rollbench=land
     messages = messages if messages is not None else []
     if not rp.scenes(report):
         raise NothingToPlot("the report names no scenes")
+    files = scene_files(report, scene_dir)
     loaded = []
     for name in rp.scenes(report):
-        path = os.path.join(scene_dir, f"{name}.json")
+        path = files.get(name) or os.path.join(scene_dir, f"{name}.json")
         try:
             with open(path, encoding="utf-8") as f:
                 scene = json.load(f)

@@ -56,19 +56,20 @@ def _cheapest_cell(table, target):
 
 
 def _verdict_counts(report):
-    """(verdicts, inconclusive, {reason: count}) over every component of every fixed-step fit."""
-    total, inconclusive, reasons = 0, 0, {}
+    """(verdicts, inconclusive, {reason: count}, {verdict: count}) over every component of every fixed-step fit."""
+    total, inconclusive, reasons, kinds = 0, 0, {}, {}
     for o in rp.orders(report):
         for c in rp.components(report):
             v = rp.verdict(o, c)
             if v == "—":
                 continue
             total += 1
+            kinds[v] = kinds.get(v, 0) + 1
             if v == "inconclusive":
                 inconclusive += 1
                 why = (o.get("inconclusive_reason") or {}).get(c) or "not given"
                 reasons[why] = reasons.get(why, 0) + 1
-    return total, inconclusive, reasons
+    return total, inconclusive, reasons, kinds
 
 
 def lower_line(report):
@@ -89,12 +90,15 @@ def lower_line(report):
 
 
 def order_lines(report):
-    total, inconclusive, reasons = _verdict_counts(report)
+    total, inconclusive, reasons, kinds = _verdict_counts(report)
     if not total:
         return []
     why = ", ".join(f"{n} {r}" for r, n in sorted(reasons.items(), key=lambda x: (-x[1], x[0])))
-    lines = [f"- Orders: {total - inconclusive} of {total} component fits reach a verdict; {inconclusive} are "
-             f"inconclusive" + (f" ({why})" if why else "") + ". \"too few points\": under 4 in the window; "
+    decided = ", ".join(f"{kinds[v]} {v}" for v in ("as declared", "lower", "exact") if kinds.get(v))
+    lines = [f"- Orders: {total - inconclusive} of {total} component fits reach a verdict"
+             + (f" ({decided})" if decided else "") + f"; {inconclusive} are "
+             f"inconclusive" + (f" ({why})" if why else "") + ". \"exact\": every error of the ladder on the plateau, "
+             "the largest step's too (no order to read, none contradicted); \"too few points\": under 4 in the window; "
              "\"floor\": as few because the runs reached the plateau (100 × the reference's error or 10 × the "
              "rounding level); \"wide interval\": 95 % half-width above 0.3; \"pre-asymptotic\": the halving "
              "slopes still move and the ladder's limits were reached; \"no asymptotic range above the plateau\": "
@@ -104,7 +108,7 @@ def order_lines(report):
     high = {}
     for o in rp.orders(report):
         if (o.get("declared") or 0) >= 8 and feeds_back(report, o["scene"]):
-            decided = [c for c in rp.components(report) if rp.verdict(o, c) in ("as declared", "lower")]
+            decided = [c for c in rp.components(report) if rp.verdict(o, c) in ("as declared", "lower", "exact")]
             high.setdefault(o["integrator"], []).append(f"{o['scene']} {len(decided)}/{len(rp.components(report))}")
     if high:
         lines.append("- Order-8 methods where R feeds back (components with a verdict): "

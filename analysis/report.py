@@ -283,6 +283,6 @@ def observed(order, component):
 
 
 def verdict(order, component):
-    """'as declared', 'lower' or 'inconclusive' as the runner decided; '—' when absent."""
+    """'as declared', 'lower', 'exact' or 'inconclusive' as the runner decided; '—' when absent."""
     value = (order.get("verdict") or {}).get(component) if order else None
     return value if isinstance(value, str) and value else "—"

@@ -9,13 +9,13 @@ from analysis import answer, costs, findings, horizon, pairs, regime
 from analysis import markdown as md
 from analysis import report as rp
 
-VERDICTS = ("as declared", "lower", "inconclusive")
+VERDICTS = ("as declared", "lower", "exact", "inconclusive")
 
 
 def _order_cell(order, component):
     value = rp.observed(order, component)
     if not math.isfinite(value):
-        return "—"
+        return "exact" if rp.verdict(order, component) == "exact" else "—"
     ci = (order.get("ci95") or {}).get(component)
     if isinstance(ci, list) and len(ci) == 2:
         # the interval itself, [low, high]
@@ -29,10 +29,11 @@ def _order_cell(order, component):
 
 
 def overall_verdict(order, components):
-    """'lower' if any component is lower, else 'inconclusive' if any is (or has none), else 'as declared'."""
+    """'lower' if any component is lower, else 'inconclusive' if any is, else 'as declared' (exact
+    components, which have no slope, count for neither; 'exact' when all are)."""
     found = [rp.verdict(order, c) for c in components if math.isfinite(rp.observed(order, c))]
     if not found:
-        return "—"
+        return "exact" if any(rp.verdict(order, c) == "exact" for c in components) else "—"
     if "lower" in found:
         return "**lower**"
     if all(v == "as declared" for v in found):
@@ -48,7 +49,8 @@ def orders_section(report):
     lines += ["Slope of log error against log h as the runner fitted it, its 95 % interval (± half-width, or "
               "[low, high]), and the runner's "
               "verdict per component: \"as declared\" when the interval lies within 0.2 of the declared order "
-              "or above it, \"lower\" when below, \"inconclusive\" when it is wider than ±0.3 or rests on fewer "
+              "or above it, \"lower\" when below, \"exact\" when every step's error lies on the plateau (no slope "
+              "to read), \"inconclusive\" when it is wider than ±0.3 or rests on fewer "
               "than 4 points (an inconclusive fit is no pass). Overall: lower if any component is lower, as "
               "declared only if all are.", ""]
     components = rp.components(report)

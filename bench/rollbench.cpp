@@ -515,7 +515,8 @@ int main(int argc, char** argv) {
 
   try {
     rb::register_plugin_steppers(steppers, rb::plugin_isolation(stepper_isolation, stepper_timeout));
-    const std::vector<std::string> tableau_methods = rb::add_tableau_files(tableau_files);
+    const std::vector<std::string> tableau_methods = rb::add_tableau_files(
+        tableau_files, [](const std::string& note) { std::fprintf(stderr, "rollbench: note: %s\n", note.c_str()); });
     if (app.got_subcommand("list")) return run_list();
     if (app.got_subcommand("trajectory")) return run_trajectory(traj);
     if (app.got_subcommand("landscape")) return run_landscape(land);

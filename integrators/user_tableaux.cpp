@@ -3,6 +3,7 @@
 #include "integrators/controllers/controller.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/steppers/tableau_methods.hpp"
+#include "integrators/tableau_twins.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {
@@ -22,8 +23,15 @@ std::vector<std::unique_ptr<Integrator>> integrators_of(const TableauFile& file)
   return made;
 }
 
-std::vector<std::string> register_tableau_file(const std::string& path) {
-  std::vector<std::unique_ptr<Integrator>> made = integrators_of(load_tableau_file(path));
+std::vector<std::string> register_tableau_file(const std::string& path, std::string* note) {
+  const TableauFile file = load_tableau_file(path);
+  if (note) {
+    const std::optional<std::string> twin = shipped_twin(file.tableau);
+    *note = twin ? "tableau file '" + path + "': tableau '" + file.tableau.name() + "' has the A, b and c of " + *twin +
+                       ": the same method under another name"
+                 : std::string();
+  }
+  std::vector<std::unique_ptr<Integrator>> made = integrators_of(file);
   std::vector<std::string> names;
   // all names checked before any is added: a clash leaves the registry as it was
   for (const auto& integrator : made) {

@@ -18,7 +18,8 @@ std::vector<std::unique_ptr<Integrator>> integrators_of(const TableauFile& file)
 // Loads the tableau file at path and adds its integrators to the registry
 // (after the built-in ones); returns their names. Throws InputError naming
 // the file when it is not a valid tableau or when one of the names is taken
-// (then none is added).
-std::vector<std::string> register_tableau_file(const std::string& path);
+// (then none is added). Where the file's method is a shipped one
+// (tableau_twins.hpp), note gets a line saying so; empty otherwise.
+std::vector<std::string> register_tableau_file(const std::string& path, std::string* note = nullptr);
 
 }  // namespace rb

@@ -99,8 +99,21 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   // small error at a larger step beyond that is not asymptotic
   Points p;  // (log10 h, log10 error)
   int at_floor = 0;
+  // a failed run has no error: it neither makes nor breaks "exact" (its
+  // failure is reported on its own)
+  bool all_on_plateau = true;
   for (const auto& [step, e] : all) {
-    if (e > ceiling) break;
+    const double level = std::max(kFloorMultiple * floor, kRoundingMultiple * kRoundingPerStep * span / step);
+    all_on_plateau = all_on_plateau && (!std::isfinite(e) || e <= level);
+  }
+  bool past_ceiling = false;
+  int above_ceiling = 0;
+  for (const auto& [step, e] : all) {
+    if (past_ceiling || e > ceiling) {
+      past_ceiling = true;
+      if (std::isfinite(e)) ++above_ceiling;
+      continue;
+    }
     const double plateau = std::max(kFloorMultiple * floor, kRoundingMultiple * kRoundingPerStep * span / step);
     if (std::isfinite(e) && e > plateau && e > 0.0) p.emplace_back(std::log10(step), std::log10(e));
     else if (std::isfinite(e)) ++at_floor;
@@ -109,6 +122,9 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   fit.slope = kNaN;
   fit.points = static_cast<int>(p.size());
   fit.at_floor = at_floor;
+  fit.above_ceiling = above_ceiling;
+  fit.smallest_finite = !all.empty() && std::isfinite(all.front().second);
+  fit.all_at_plateau = all_on_plateau && at_floor >= kMinOrderPoints;
   if (p.size() < 2) return fit;
 
   fit.halving_slopes = halving_slopes(p);
@@ -158,6 +174,10 @@ bool pre_asymptotic(const OrderFit& fit) {
 bool wants_finer_steps(const OrderFit& fit, int declared) {
   if (fit.at_floor > 0) return false;
   const std::string why = inconclusive_reason(fit, declared);
+  if (why == "too few points")
+    // a ladder of enough runs that ends before its errors come under the
+    // ceiling; not a short ladder the user chose, nor runs that failed
+    return fit.smallest_finite && fit.above_ceiling > 0 && fit.points + fit.above_ceiling >= kMinOrderPoints;
   return why == "pre-asymptotic" || why == "straddles";
 }
 
@@ -171,6 +191,7 @@ std::string inconclusive_reason(const OrderFit& fit, int declared) {
 }
 
 std::string order_verdict(const OrderFit& fit, int declared) {
+  if (fit.all_at_plateau) return "exact";
   if (fit.points < kMinOrderPoints || !std::isfinite(fit.slope) || !(fit.slope_ci95 <= kMaxHalfWidth) ||
       pre_asymptotic(fit))
     return "inconclusive";
@@ -183,6 +204,8 @@ std::string order_verdict(const OrderFit& fit, int declared) {
 OrderJudgement judge_order(const OrderFit& reference, const OrderFit& self, int declared) {
   const std::string by_reference = order_verdict(reference, declared);
   if (by_reference == "inconclusive") return {by_reference, inconclusive_reason(reference, declared)};
+  // no slope to confirm: the runs' own differences sit at rounding too
+  if (by_reference == "exact") return {by_reference, ""};
   if (!std::isfinite(self.slope)) return {"inconclusive", "no self-convergence"};
   if (std::abs(self.slope - reference.slope) > std::max(kSelfAgreement, 0.05 * declared))
     return {"inconclusive", "self-convergence disagrees"};

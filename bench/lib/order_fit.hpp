@@ -32,11 +32,19 @@ struct OrderFit {
   double h_min = 0.0, h_max = 0.0;
   int points = 0;
   int at_floor = 0;  // measured points left out on the plateau (kFloorMultiple, kRoundingMultiple)
+  // finite errors left out above the ceiling, from the first step up whose
+  // error passes it; smallest_finite: the smallest step's error is finite
+  int above_ceiling = 0;
+  bool smallest_finite = false;
   // the local slopes over successive halvings of h from the smallest step
   // kept up (at most kHalvingSlopes): where they still move, the smallest
   // steps are not yet asymptotic
   std::vector<double> halving_slopes;
   bool asymptotic = false;  // kHalvingSlopes halving slopes agree (slopes_agree)
+  // every step's error is on the plateau (runs that failed have none), at
+  // kMinOrderPoints steps or more: the method is exact on this component of
+  // this scene
+  bool all_at_plateau = false;
 };
 
 // A point is on a plateau, left out of the fit, when its error is at most
@@ -76,6 +84,8 @@ inline constexpr int kMinOrderPoints = 4;
 OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& error, double floor = 0.0,
                    double ceiling = 0.1, std::size_t max_points = 6, double span = 0.0);
 
+// "exact" when every step's error lies on the plateau (all_at_plateau: no
+// order to read, and none contradicted); otherwise
 // "as declared" when the 95 % interval of the slope lies above declared -
 // 0.2, "lower" when it lies below, "inconclusive" when it straddles that,
 // is wider than +-0.3, rests on fewer than kMinOrderPoints points, or when
@@ -90,8 +100,11 @@ std::string order_verdict(const OrderFit& fit, int declared);
 bool pre_asymptotic(const OrderFit& fit);
 
 // True when a finer ladder could still decide: no point reached the
-// plateau, and the fit is pre-asymptotic or its interval straddles
-// declared - 0.2 (a slope still converging towards its order).
+// plateau, and the fit is pre-asymptotic, its interval straddles
+// declared - 0.2 (a slope still converging towards its order), or it has
+// too few points because its ladder (kMinOrderPoints finite errors or
+// more, the smallest step's among them) ends before the errors come under
+// the ceiling.
 bool wants_finer_steps(const OrderFit& fit, int declared);
 
 // Why a verdict is inconclusive: "too few points" (below kMinOrderPoints in

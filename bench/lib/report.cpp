@@ -347,7 +347,8 @@ json order_fit_json(const OrderFit& fit) {
   json j = {{"points", std::max(0, fit.points)},
             {"at_plateau", fit.at_floor},
             {"halving_slopes", fit.halving_slopes},
-            {"asymptotic", fit.asymptotic}};
+            {"asymptotic", fit.asymptotic},
+            {"all_at_plateau", fit.all_at_plateau}};
   if (!std::isfinite(fit.slope)) {
     j["slope"] = nullptr;
     j["ci95"] = nullptr;
@@ -374,14 +375,16 @@ json fit_orders(const std::vector<FitRun>& runs, const ReferenceFloors& floors) 
     const double floor = found != floors.end() ? found->second : 0.0;
     const auto components = group_orders(group, floor);
     json observed, ci95, fits, self, verdicts, reasons;
-    bool lower = false, all_as_declared = true;
+    // pass: every component as declared or exact, at least one as declared
+    bool lower = false, all_as_declared = true, any_as_declared = false;
     for (std::size_t i = 0; i < kErrorComponentCount; ++i) {
       const std::string c = kErrorComponents[i].name;
       const ComponentOrder& o = components[i];
       verdicts[c] = o.judgement.verdict;
       reasons[c] = o.judgement.reason.empty() ? json(nullptr) : json(o.judgement.reason);
       lower = lower || o.judgement.verdict == "lower";
-      all_as_declared = all_as_declared && o.judgement.verdict == "as declared";
+      all_as_declared = all_as_declared && (o.judgement.verdict == "as declared" || o.judgement.verdict == "exact");
+      any_as_declared = any_as_declared || o.judgement.verdict == "as declared";
       observed[c] = std::isfinite(o.reference.slope) ? json(o.reference.slope) : json(nullptr);
       ci95[c] = std::isfinite(o.reference.slope) ? number(o.reference.slope_ci95) : json(nullptr);
       fits[c] = order_fit_json(o.reference);
@@ -402,9 +405,9 @@ json fit_orders(const std::vector<FitRun>& runs, const ReferenceFloors& floors) 
                         {"rounding_per_step", kRoundingPerStep}}},
                       {"verdict", verdicts},
                       {"inconclusive_reason", reasons},
-                      {"pass", lower             ? json(false)
-                               : all_as_declared ? json(true)
-                                                 : json(nullptr)}});
+                      {"pass", lower                                ? json(false)
+                               : all_as_declared && any_as_declared ? json(true)
+                                                                    : json(nullptr)}});
   }
   return orders;
 }

@@ -35,8 +35,9 @@ using ReferenceFloors = std::map<std::string, double>;
 // The "orders" entries for the runs of a report: per (scene, integrator) of a
 // fixed-step method, the slope of log error on log h per component with its
 // 95 % interval, a verdict per component (order_verdict: "as declared",
-// "lower", "inconclusive") and pass: false when a component is lower, true
-// when every one is as declared, null otherwise.
+// "lower", "exact", "inconclusive") and pass: false when a component is
+// lower, true when every one is as declared or exact and at least one as
+// declared, null otherwise.
 nlohmann::json fit_orders(const std::vector<FitRun>& runs, const ReferenceFloors& floors);
 
 // The "tolerance_fits" entries: per (scene, integrator) of an adaptive

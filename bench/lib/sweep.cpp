@@ -152,11 +152,12 @@ double largest_omega(const Reference& reference) {
 
 std::string progress_line(const std::string& phase, std::size_t done, std::size_t total, double elapsed_s,
                           const std::string& unit) {
-  const double eta = done > 0 ? elapsed_s / static_cast<double>(done) * static_cast<double>(total - done) : 0.0;
   std::ostringstream s;
   s.precision(3);
-  s << phase << ": " << done << "/" << total << " " << unit << ", " << elapsed_s << " s elapsed, about " << eta
-    << " s left";
+  s << phase << ": " << done << "/" << total << " " << unit;
+  if (done == 0) return s.str();  // nothing measured yet: an estimate of 0 s would say nothing
+  const double eta = elapsed_s / static_cast<double>(done) * static_cast<double>(total - done);
+  s << ", " << elapsed_s << " s elapsed, about " << eta << " s left";
   return s.str();
 }
 
@@ -421,7 +422,8 @@ std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepS
     // unsharded: the indices so far are 0 .. size - 1
     const std::vector<SweepTask> finer = finer_step_tasks(spec, scenes, records, records.size());
     if (finer.empty()) break;
-    progress("orders: " + std::to_string(finer.size()) + " pre-asymptotic fits get a step half their smallest");
+    progress("orders: " + std::to_string(finer.size()) +
+             " undecided fits (pre-asymptotic, straddling or too few points) get a step half their smallest");
     std::vector<RunRecord> more = run_tasks(spec, scenes, finer, progress);
     records.insert(records.end(), more.begin(), more.end());
   }

@@ -93,7 +93,8 @@ std::vector<SweepScene> prepare_scenes(const SweepSpec& spec, bool with_referenc
                                        const std::function<void(const std::string&)>& progress = {});
 
 // "phase: 3/10 runs, 1.2 s elapsed, about 2.8 s left": progress with an
-// estimate from the time per item so far.
+// estimate from the time per item so far; "phase: 0/10 runs" before the
+// first item is done (no time per item yet, so no estimate).
 std::string progress_line(const std::string& phase, std::size_t done, std::size_t total, double elapsed_s,
                           const std::string& unit = "runs");
 

@@ -6,10 +6,13 @@
 
 namespace rb {
 
-std::vector<std::string> add_tableau_files(const std::vector<std::string>& paths) {
+std::vector<std::string> add_tableau_files(const std::vector<std::string>& paths,
+                                           const std::function<void(const std::string&)>& note) {
   std::vector<std::string> names;
   for (const std::string& path : paths) {
-    const std::vector<std::string> added = register_tableau_file(path);
+    std::string twin;
+    const std::vector<std::string> added = register_tableau_file(path, &twin);
+    if (!twin.empty() && note) note(twin);
     names.insert(names.end(), added.begin(), added.end());
   }
   return names;

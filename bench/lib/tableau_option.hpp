@@ -2,6 +2,7 @@
 // rollbench's --tableau FILE (repeatable): each file's integrators join the
 // registry before the command runs, so that list, run and trajectory see
 // them like any other (docs/formats.md, "Butcher tableau").
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -9,7 +10,9 @@ namespace rb {
 
 // Registers the integrators of every file, in order; returns their names.
 // Throws InputError naming the file (and the key) for the first bad one.
-std::vector<std::string> add_tableau_files(const std::vector<std::string>& paths);
+// note gets a line for each file whose method is a shipped one.
+std::vector<std::string> add_tableau_files(const std::vector<std::string>& paths,
+                                           const std::function<void(const std::string&)>& note = {});
 
 // The sweep's methods with the tableaux' ones added: a preset that lists
 // its methods would leave them out; an empty list (everything registered)

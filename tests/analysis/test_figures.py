@@ -274,6 +274,29 @@ class FiguresOfSyntheticReport(unittest.TestCase):
             self.assertEqual(len(messages), 1, messages)
             self.assertRegex(messages[0], r"scenes.png: left out plane \(rollbench: 'landscape' column \d+: ")
 
+    def test_a_scene_given_as_a_file_is_drawn_from_that_file(self):
+        # the run was given my-valley.json (its name "plane"), not the shipped file:
+        # scenes.png reads the file options.scenes records, not the scene folder
+        with tempfile.TemporaryDirectory() as tmp:
+            with open(os.path.join(SCENE_DIR, "saddle.json"), encoding="utf-8") as f:
+                scene = json.load(f)
+            scene["name"] = "plane"
+            path = os.path.join(tmp, "my-valley.json")
+            with open(path, "w", encoding="utf-8") as f:
+                json.dump(scene, f)
+            report = syn.subset(syn.make_report(), "plane", ("rk4",))
+            del report["stability"]
+            report.setdefault("options", {})["scenes"] = [path]
+            self.assertEqual(figures_overview.scene_files(report, SCENE_DIR), {"plane": path})
+            empty = os.path.join(tmp, "empty")
+            os.mkdir(empty)
+            messages = []
+            figures_overview.scenes(report, empty, None, messages)  # no scene folder holds it: drawn all the same
+            self.assertEqual(messages, [])
+            # a name given as a shipped scene is not a file: looked up in the folder
+            report["options"]["scenes"] = ["plane"]
+            self.assertEqual(figures_overview.scene_files(report, SCENE_DIR), {})
+
 
 class Styles(unittest.TestCase):
     def test_families_have_distinct_hues(self):

@@ -91,6 +91,16 @@ class SummaryOfSyntheticReport(unittest.TestCase):
         self.assertEqual(summary._order_cell(order, "contact"),
                          f"{order['observed']['contact']:.2f} [3.90, 4.10] (as declared)")
 
+    def test_an_exact_component_has_no_slope_and_says_exact(self):
+        order = {"observed": {"contact": 4.01, "omega": None}, "ci95": {"contact": 0.02, "omega": None},
+                 "verdict": {"contact": "as declared", "omega": "exact"}}
+        self.assertEqual(summary._order_cell(order, "omega"), "exact")
+        # exact counts for neither side of the overall verdict
+        self.assertEqual(summary.overall_verdict(order, ["contact", "omega"]), "as declared")
+        order["verdict"]["contact"] = "lower"
+        self.assertEqual(summary.overall_verdict(order, ["contact", "omega"]), "**lower**")
+        self.assertEqual(summary.overall_verdict(order, ["omega"]), "exact")
+
     def test_without_orders_nothing_is_fitted_here(self):
         markdown = summary.summary_markdown(syn.minimal_report())
         self.assertIn("The report has no `orders` section", markdown)

@@ -2,7 +2,9 @@
 // method that loses its order at small steps far above the plateau is not
 // certified; a rounding plateau is left out only at the rounding level;
 // smallest steps whose halving slopes still move decide nothing and ask for
-// a finer ladder; self-convergence confirms the reference's slope.
+// a finer ladder, and so does a ladder that ends above the ceiling; a
+// component on the plateau at every step is exact; self-convergence
+// confirms the reference's slope.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -114,6 +116,62 @@ OrderFit settled(double slope) {
   fit.slope = slope;
   fit.slope_ci95 = 0.05;
   return fit;
+}
+
+TEST(OrderVerdictsBothWays, AComponentOnThePlateauAtEveryStepIsExact) {
+  // an error of 0.5 x the floor at every step: exact (RK3's centre on a
+  // path quadratic in t)
+  const std::vector<double> h = ladder(10);
+  const auto flat = errors(h, [](double) { return 5e-14; });
+  const OrderFit fit = fit_order(h, flat, 1e-13, 0.1, 8, 1.0);
+  EXPECT_TRUE(fit.all_at_plateau);
+  EXPECT_EQ(order_verdict(fit, 3), "exact");
+  EXPECT_EQ(judge_order(fit, no_fit(), 3).verdict, "exact");
+  // one step above the plateau (the largest, at 100 x the floor's multiple): not exact
+  auto one_above = flat;
+  one_above[0] = 1e-9;
+  const OrderFit risen = fit_order(h, one_above, 1e-13, 0.1, 8, 1.0);
+  EXPECT_FALSE(risen.all_at_plateau);
+  EXPECT_EQ(order_verdict(risen, 3), "inconclusive");
+  EXPECT_EQ(inconclusive_reason(risen, 3), "floor");
+  // failed runs (no error: large steps that left the chart) neither make nor
+  // break it, and they are failures of their own
+  auto failed = flat;
+  for (int i = 0; i < 7; ++i) failed[static_cast<std::size_t>(i)] = NAN;
+  EXPECT_EQ(order_verdict(fit_order(h, failed, 1e-13, 0.1, 8, 1.0), 3), "exact");
+  // with one finite error above the plateau among them: not exact
+  failed[7] = 1e-9;
+  EXPECT_NE(order_verdict(fit_order(h, failed, 1e-13, 0.1, 8, 1.0), 3), "exact");
+  // three steps are too few to call anything exact, and so are three errors
+  const std::vector<double> three(h.begin(), h.begin() + 3);
+  EXPECT_NE(order_verdict(fit_order(three, errors(three, [](double) { return 5e-14; }), 1e-13, 0.1, 8, 1.0), 3),
+            "exact");
+  std::vector<double> three_left(h.size(), NAN);
+  for (std::size_t i = 0; i < 3; ++i) three_left[i] = 5e-14;
+  EXPECT_NE(order_verdict(fit_order(h, three_left, 1e-13, 0.1, 8, 1.0), 3), "exact");
+}
+
+TEST(OrderVerdictsBothWays, ALadderEndingAboveTheCeilingAsksForFinerSteps) {
+  // order 1 with a large constant: under the ceiling 0.1 only at the two
+  // smallest steps, nothing on the plateau: a finer step could decide
+  const std::vector<double> h = ladder(10);
+  const auto e = errors(h, [](double x) { return 40.0 * x; });
+  const OrderFit fit = fit_order(h, e, 1e-13, 0.1, 8, 1.0);
+  EXPECT_EQ(fit.points, 2);
+  EXPECT_EQ(inconclusive_reason(fit, 1), "too few points");
+  EXPECT_TRUE(wants_finer_steps(fit, 1));
+  // the same few points, but the smallest step on the plateau: no finer step helps
+  auto floored = e;
+  floored.back() = 1e-12;
+  EXPECT_FALSE(wants_finer_steps(fit_order(h, floored, 1e-13, 0.1, 8, 1.0), 1));
+  // runs that failed (no error) above the two: a failing method gets no more runs
+  auto failed = e;
+  for (std::size_t i = 0; i + 2 < failed.size(); ++i) failed[i] = NAN;
+  EXPECT_FALSE(wants_finer_steps(fit_order(h, failed, 1e-13, 0.1, 8, 1.0), 1));
+  // a ladder of three runs, as a user chose it, stays as it is
+  const std::vector<double> three(h.end() - 3, h.end());
+  EXPECT_FALSE(
+      wants_finer_steps(fit_order(three, errors(three, [](double x) { return 40.0 * x; }), 1e-13, 0.1, 8, 1.0), 1));
 }
 
 TEST(OrderVerdictsBothWays, SelfConvergenceConfirmsTheReferenceSlopeOrWithholdsTheVerdict) {

@@ -97,6 +97,34 @@ TEST(TableauCli, ListAndTrajectoryTakeTheFileToo) {
   EXPECT_NE(traj.out.find("rkmk-ral3 on plane: ok"), std::string::npos) << traj.out;
 }
 
+// The note a file gets whose A, b and c are a shipped tableau's.
+std::string twin_note(const std::string& file, const std::string& name) {
+  return "rollbench: note: tableau file '" + file + "': tableau '" + name +
+         "' has the A, b and c of the shipped tableau 'bs32' (Bogacki & Shampine, A 3(2) pair of Runge-Kutta "
+         "formulas, Appl. Math. Lett. 2 (1989); built in as rk-bs32-adaptive): the same method under another "
+         "name\n";
+}
+
+// A file that types in a shipped tableau (Bogacki-Shampine, rounded to 16
+// digits; and Ralston's third-order method, which is BS32's propagated
+// solution) loads, with a note naming the built-in it duplicates; Heun's
+// method with its weights moved by 1e-9 (order 1, as the file says) gets none.
+TEST(TableauCli, AFileTypingInAShippedTableauGetsANoteNamingIt) {
+  const std::string bs = tableau_file("bs-twin.json", kBs32).string();
+  const robustness::CliOutcome twin = robustness::rollbench("list --tableau " + bs);
+  ASSERT_EQ(twin.code, 0) << twin.err;
+  EXPECT_EQ(twin.err, twin_note(bs, "bs-file"));
+  const std::string ral3 = tableau_file("ral3-twin.json", kRalston).string();
+  const robustness::CliOutcome ralston = robustness::rollbench("list --tableau " + ral3);
+  EXPECT_EQ(ralston.err, twin_note(ral3, "ral3"));
+  const char* const kNearHeun = R"({"name": "near-heun", "order": 1, "c": [0, 1], "A": [[0, 0], [1, 0]],
+    "b": [0.500000001, 0.499999999]})";
+  const robustness::CliOutcome near =
+      robustness::rollbench("list --tableau " + tableau_file("near-heun.json", kNearHeun).string());
+  EXPECT_EQ(near.code, 0) << near.err;
+  EXPECT_EQ(near.err, "");
+}
+
 TEST(TableauCli, ABadFileExitsWithTwoNamingTheFileKeyAndTree) {
   const std::string bad = tableau_file("bad.json", std::string(kRalston).replace(
                                                        std::string(kRalston).find("\"order\": 3"), 10, "\"order\": 4"))
@@ -117,7 +145,7 @@ TEST(TableauCli, ABadFileExitsWithTwoNamingTheFileKeyAndTree) {
   const std::string ok = tableau_file("ral3.json", kRalston).string();
   r = robustness::rollbench("list --tableau " + ok + " --tableau " + ok);
   EXPECT_EQ(r.code, 2);
-  EXPECT_EQ(r.err, "rollbench: tableau file '" + ok +
+  EXPECT_EQ(r.err, twin_note(ok, "ral3") + "rollbench: tableau file '" + ok +
                        "': 'name': integrator 'rk-ral3' is already registered; "
                        "rename the tableau\n");
   // a file that is not there
