@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "bench/lib/order_fit.hpp"
+#include "tests/bench/error_series.hpp"
 
 namespace rb {
 namespace {
@@ -13,13 +14,6 @@ std::vector<double> steps(int from, int to) {
   std::vector<double> h;
   for (int k = from; k <= to; ++k) h.push_back(std::ldexp(1.0, -k));
   return h;
-}
-
-template <class F>
-std::vector<double> errors(const std::vector<double>& h, F&& f) {
-  std::vector<double> e;
-  for (double x : h) e.push_back(f(x));
-  return e;
 }
 
 TEST(OrderFit, ExactPowerLawGivesItsExponent) {

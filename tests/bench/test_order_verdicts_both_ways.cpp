@@ -12,6 +12,7 @@
 #include "bench/lib/fit_run.hpp"
 #include "bench/lib/order_fit.hpp"
 #include "bench/lib/self_convergence.hpp"
+#include "tests/bench/error_series.hpp"
 
 namespace rb {
 namespace {
@@ -22,13 +23,6 @@ std::vector<double> ladder(int to) {
   for (int k = 0; k <= 32; ++k) h.push_back(std::exp2(-k / 4.0));
   for (int k = 9; k <= to; ++k) h.push_back(std::ldexp(1.0, -k));
   return h;
-}
-
-template <class F>
-std::vector<double> errors(const std::vector<double>& h, F&& f) {
-  std::vector<double> e;
-  for (double x : h) e.push_back(f(x));
-  return e;
 }
 
 TEST(OrderVerdictsBothWays, AnOrderLostAtSmallStepsFarAboveTheFloorIsNotCertified) {
