@@ -102,19 +102,16 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   // a failed run has no error: it neither makes nor breaks "exact" (its
   // failure is reported on its own)
   bool all_on_plateau = true;
-  for (const auto& [step, e] : all) {
-    const double level = std::max(kFloorMultiple * floor, kRoundingMultiple * kRoundingPerStep * span / step);
-    all_on_plateau = all_on_plateau && (!std::isfinite(e) || e <= level);
-  }
   bool past_ceiling = false;
   int above_ceiling = 0;
   for (const auto& [step, e] : all) {
+    const double plateau = std::max(kFloorMultiple * floor, kRoundingMultiple * kRoundingPerStep * span / step);
+    all_on_plateau = all_on_plateau && (!std::isfinite(e) || e <= plateau);
     if (past_ceiling || e > ceiling) {
       past_ceiling = true;
       if (std::isfinite(e)) ++above_ceiling;
       continue;
     }
-    const double plateau = std::max(kFloorMultiple * floor, kRoundingMultiple * kRoundingPerStep * span / step);
     if (std::isfinite(e) && e > plateau && e > 0.0) p.emplace_back(std::log10(step), std::log10(e));
     else if (std::isfinite(e)) ++at_floor;
   }
