@@ -1,5 +1,6 @@
 #include "integrators/driver.hpp"
 
+#include <algorithm>
 #include <limits>
 
 namespace rb {
@@ -29,6 +30,12 @@ std::string model_stop_reason(const Validity& v, double t) {
 std::string stage_stop_reason(const Validity& v, double t, double h) {
   char at[96];
   std::snprintf(at, sizeof at, " at t = %.9g (at a stage of the step of h = %.3g from there)", t, h);
+  return v.reason + at;
+}
+
+std::string path_stop_reason(const Validity& v, double t, double h) {
+  char at[96];
+  std::snprintf(at, sizeof at, " at t = %.9g (between the stages of the step of h = %.3g from there)", t, h);
   return v.reason + at;
 }
 
@@ -83,6 +90,35 @@ double initial_step(const Problem& problem, const FlatState& y0, const Tolerance
   const double h = std::min({100.0 * h0, h1, span});
   // a start where F is not finite gets a plain guess; the run reports it
   return std::isfinite(h) && h > 0.0 ? h : 1e-3 * span;
+}
+
+PathCheck check_step_path(const Problem& problem, const FlatState& y0, const FlatState& y1, double h, Cost& cost) {
+  auto limit_of = [&](const ModelMargins& m) -> Validity {
+    ++cost.validity_checks;
+    if (Problem::within_model(m)) return {};
+    Validity v = problem.check_model(m);
+    return (v.status == Status::curvature || v.status == Status::lift_off) ? v : Validity{};
+  };
+  FlatState f0, f1, y, f;
+  ModelMargins m;
+  PathCheck path;
+  problem.flat_rhs(y0.data(), f0.data(), m);
+  if ((path.limit = limit_of(m)).status != Status::ok) return path;
+  problem.flat_rhs(y1.data(), f1.data(), m);
+  if ((path.limit = limit_of(m)).status != Status::ok) return path;
+  const double chord = (contact_of(y1) - contact_of(y0)).norm();
+  const double speed = std::max(f0.segment<2>(kOffsetAlpha).norm(), f1.segment<2>(kOffsetAlpha).norm());
+  path.travel = std::max(chord, std::abs(h) * speed);
+  const double spacing = 0.25 * problem.model().params().radius;
+  const double wanted = std::isfinite(path.travel) ? std::ceil(path.travel / spacing) : kPathPointsMax;
+  const int n = static_cast<int>(std::clamp(wanted, double{kPathPointsMin}, double{kPathPointsMax}));
+  for (int i = 1; i <= n; ++i) {
+    const double s = static_cast<double>(i) / (n + 1), s2 = s * s, s3 = s2 * s;
+    y = (2 * s3 - 3 * s2 + 1) * y0 + (h * (s3 - 2 * s2 + s)) * f0 + (3 * s2 - 2 * s3) * y1 + (h * (s3 - s2)) * f1;
+    problem.flat_rhs(y.data(), f.data(), m);
+    if ((path.limit = limit_of(m)).status != Status::ok) return path;
+  }
+  return path;
 }
 
 std::string controller_of(const std::string& method_default, const RunOptions& options) {

@@ -164,6 +164,33 @@ double initial_step(const Problem& problem, const FlatState& y0, const Tolerance
 // "the step size fell to 3.2e-15 at t = 0.25" (numbers in %g).
 std::string underflow_message(double h, double t);
 
+// The model's limits (curvature, lift-off) along the path of an accepted
+// step of h from y0 to y1, between its stages: a step whose stages all miss
+// a narrow region beyond a limit would otherwise cross it unseen. The path
+// is the cubic Hermite interpolant of the flat state through y0, F(y0), y1,
+// F(y1) (exact to O(h^4), whatever the stepper), checked at interior points
+// spaced so that the contact point moves at most a quarter of the ball's
+// radius between two (at least kPathPointsMin, at most kPathPointsMax).
+// Every evaluation is counted in cost.validity_checks. limit: the first
+// limit met, ok otherwise (also where the margins are not finite: a
+// non-finite path is the step's end check's to find); travel: the contact
+// point's path length over the step (from its chord and its end speeds).
+inline constexpr int kPathPointsMin = 3;
+inline constexpr int kPathPointsMax = 64;
+struct PathCheck {
+  Validity limit;
+  double travel = 0.0;
+};
+PathCheck check_step_path(const Problem& problem, const FlatState& y0, const FlatState& y1, double h, Cost& cost);
+
+// Near the curvature limit a step may move the contact point at most this
+// many ball radii: a longer one cannot resolve the landscape at the scale
+// where the model stops holding, and its path (accurate or not) may pass a
+// region beyond the limit that the exact path crosses. Such a step is
+// refused and retried at the length that moves the contact point half as
+// far.
+inline constexpr double kNearLimitTravel = 0.5;
+
 // The controller a run of an adaptive method uses: the method's own
 // (MethodInfo::controller) unless options.controller names a filter (i, pi,
 // pid) and the method's is one too; a library's controller stays. Throws
@@ -211,9 +238,9 @@ inline constexpr double kLimitShrink = 0.25;
 //         t and h updated, its own rejections added to cost.rejected;
 //     double first_step(double span) const;     the first h when options.h = 0.
 //
-// A library's stepper (attempt, advance) also offers
+// Every stepper also offers
 //     void restore(const FlatState& y);          back to y, the current state,
-//         after an attempt the driver refuses (see below).
+//         after a step the driver refuses (see below).
 //
 // Every stage a stepper evaluates goes through stage_flat_rhs /
 // stage_lie_rhs (or Cost::note), rejected attempts' included: an attempt
@@ -221,8 +248,14 @@ inline constexpr double kLimitShrink = 0.25;
 // and retried at kLimitShrink of its step; the run stops at y with that
 // limit's status only when the step can shrink no further (min_step_at),
 // or at the state before y when y itself is beyond it (checked then, by
-// one evaluation). The start and the end get one evaluation each; all are
-// counted in Cost::validity_checks (docs/design.md).
+// one evaluation). After the first such refusal, or once a stage came near
+// the curvature limit (r max kappa >= 1/2), every accepted step's path
+// between its stages is checked as well (check_step_path): a step whose
+// path goes beyond a limit is undone and refused the same way, and one that
+// moves the contact point more than kNearLimitTravel radii is undone and
+// retried shorter. The start
+// and the end get one evaluation each; all are counted in
+// Cost::validity_checks (docs/design.md).
 // A stepper adds its own counts (rhs_evals, ...) to cost; the driver counts
 // steps and rejections. A failure is thrown: StepFailure carries its status,
 // any other std::exception becomes Status::error with its message.
@@ -269,13 +302,21 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
   // (curvature, lift-off): if y itself is beyond it, the run ends at the
   // state before; else the step shrinks, and the run stops at y only when
   // the limit is still met at the smallest step time resolves.
-  auto refuse = [&](const Validity& limit, double h_tried) -> std::optional<RunResult> {
+  // From the first such refusal on, and from the first stage near the
+  // curvature limit (StageWatch::near), every accepted step's path between
+  // its stages is checked too (check_step_path): the run is where a limit
+  // is, and a step could jump the region its stages missed.
+  bool check_paths = false;
+  auto refuse = [&](const Validity& limit, double h_tried, bool on_path = false) -> std::optional<RunResult> {
+    check_paths = true;
     if (!y_checked) {
       if (const Validity at = book.check_model_at(y, t); at.status != Status::ok) return stop_before(at);
       y_checked = true;
     }
     ++cost.rejected;
-    if (!(h_tried > min_step_at(t))) return book.stop(limit.status, stage_stop_reason(limit, t, h_tried), y, t);
+    if (!(h_tried > min_step_at(t)))
+      return book.stop(limit.status,
+                       on_path ? path_stop_reason(limit, t, h_tried) : stage_stop_reason(limit, t, h_tried), y, t);
     h = std::max(kLimitShrink * h_tried, min_step_at(t));
     return std::nullopt;
   };
@@ -378,6 +419,25 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
     stepper.state(y_new);
     if (const Validity v = problem.check_step(y_new); v.status != Status::ok)
       return book.stop(v.status, v.reason, y, t_old);
+    if (check_paths || cost.watch.near) [[unlikely]] {
+      // a path beyond a limit between the stages, or a step too long to
+      // resolve the landscape near one: the step is undone, refused
+      const PathCheck path = check_step_path(problem, y, y_new, t - t_old, cost);
+      const double reach = kNearLimitTravel * problem.model().params().radius;
+      if (path.limit.status != Status::ok || path.travel > reach) {
+        stepper.restore(y);
+        --cost.steps;
+        const double h_tried = t - t_old;
+        t = t_old;
+        if (path.limit.status != Status::ok) {
+          if (std::optional<RunResult> stop = refuse(path.limit, h_tried, true)) return *stop;
+        } else {
+          ++cost.rejected;
+          h = h_tried * 0.5 * reach / path.travel;
+        }
+        continue;
+      }
+    }
     // record every output this step reached
     if constexpr (Stepper::dense_output) {
       Trajectory& out = book.output();

@@ -64,6 +64,9 @@ struct MethodInfo {
 struct StageWatch {
   bool beyond = false;  // some stage failed Problem::within_model since the driver last looked
   ModelMargins first;   // the margins of the first such stage
+  // some stage of the run came near the curvature limit
+  // (ModelMargins::near_curvature_limit); never cleared
+  bool near = false;
 };
 
 // Cost of a run, counted the same way by every integrator.
@@ -85,6 +88,7 @@ struct Cost {
   // but for the rare failure.
   void note(const ModelMargins& m) {
     ++validity_checks;
+    watch.near |= m.near_curvature_limit();
     if (!Problem::within_model(m)) [[unlikely]] {
       if (!watch.beyond) watch.first = m;
       watch.beyond = true;

@@ -26,6 +26,10 @@ std::string model_stop_reason(const Validity& v, double t);
 // max curvature reached 1.04 at t = 0.3 (at a stage of the step of h = 0.05
 // from there)".
 std::string stage_stop_reason(const Validity& v, double t, double h);
+// The same for a point of the step's path between its stages (the
+// driver's check_step_path): "... (between the stages of the step of h =
+// 0.05 from there)".
+std::string path_stop_reason(const Validity& v, double t, double h);
 
 // A failure a stepper raises from inside a step (a library's error code or
 // exception) with the status the run should end with. The driver ends the

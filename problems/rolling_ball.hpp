@@ -45,6 +45,14 @@ struct ModelMargins {
   bool ball_fits() const { return (fit_xx > 0.0) & (fit_xx * fit_yy - fit_xy * fit_xy > 0.0); }
   // the contact is regular: the ball fits and E is not singular
   bool regular() const { return ball_fits() & (det_E > kSingularE); }
+  // r max(k1, k2) >= 1/2, where the radius of curvature is at most twice the
+  // ball's: I - 2 r II = 2 M - I is not positive definite (false for NaN).
+  // The adaptive driver checks the paths of its steps from there on.
+  bool near_curvature_limit() const {
+    const double a = 2.0 * fit_xx - (1.0 + slope_x * slope_x), b = 2.0 * fit_xy - slope_x * slope_y;
+    const double c = 2.0 * fit_yy - (1.0 + slope_y * slope_y);
+    return (a <= 0.0) | (a * c - b * b <= 0.0);
+  }
   // r max(k1, k2) = 1 - (the smaller eigenvalue of I^-1 M), for messages
   double r_kappa_max() const;
 };

@@ -67,6 +67,14 @@ class ExpPairStepper {
     y.tail<kZSize>() = z_;
   }
   void interpolate(double, FlatState& y) const { state(y); }
+  // back to y, the state before the step the driver refused after
+  // accepting it (its path went beyond a limit): state() wrote it from
+  // R_ and z_, so they come back bit for bit
+  void restore(const FlatState& y) {
+    R_ = rotation_of(y);
+    z_ = z_of(y);
+    have_first_ = false;
+  }
 
  private:
   const Problem* problem_;

@@ -58,6 +58,13 @@ class FlatPairStepper {
 
   void state(FlatState& y) const { y = y_; }
   void interpolate(double, FlatState& y) const { y = y_; }
+  // back to y, the state before the step the driver refused after
+  // accepting it (its path went beyond a limit); the first stage there is
+  // evaluated again by the next attempt
+  void restore(const FlatState& y) {
+    y_ = y;
+    have_first_ = false;
+  }
 
  private:
   // sum_j w_j k_j over the first count stages

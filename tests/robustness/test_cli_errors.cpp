@@ -82,6 +82,14 @@ TEST(CliErrors, RunsThatStopEarlyExitThreeWithTheReason) {
       {"trajectory " RB_TEST_DATA
        "/stop-steep-bowl.json --integrator rkmk-f78-adaptive --rtol 1e-2 --atol 1e-2 --out OUT",
        3, ": curvature: "},
+      // a loose step whose stages all miss the region its path crosses
+      // (issue 32's case): stopped for every output spacing
+      {"trajectory " RB_TEST_DATA
+       "/stop-steep-elliptic-bowl.json --integrator rkmk-f78-adaptive --rtol 1e-2 --atol 1e-2 --dt-out 1 --out OUT",
+       3, ": curvature: "},
+      {"trajectory " RB_TEST_DATA
+       "/stop-steep-elliptic-bowl.json --integrator rkmk-f78-adaptive --rtol 1e-2 --atol 1e-2 --dt-out 0.01 --out OUT",
+       3, ": curvature: "},
       {"trajectory " RB_TEST_DATA "/stop-nonfinite.json --integrator euler --h 0.01 --out OUT", 3,
        ": diverged: the landscape or its derivatives are not finite at the contact point\n"},
       {"trajectory plane --integrator gsl-rkf45-adaptive --rtol 1e-300 --atol 1e-300 --out OUT", 3,
