@@ -187,12 +187,19 @@ std::string inconclusive_reason(const OrderFit& fit, int declared) {
   return "straddles";
 }
 
+bool certified_at_plateau(const OrderFit& fit, double bar) {
+  const std::vector<double>& s = fit.halving_slopes;
+  if (fit.at_floor == 0 || s.size() < 2) return false;
+  const bool falling = s[0] < s[1] - std::max(kHalvingAgreement, 0.05 * std::abs(s[1]));
+  return !falling && std::min(s[0], s[1]) >= bar && fit.slope - fit.slope_ci95 >= bar;
+}
+
 std::string order_verdict(const OrderFit& fit, int declared) {
   if (fit.all_at_plateau) return "exact";
-  if (fit.points < kMinOrderPoints || !std::isfinite(fit.slope) || !(fit.slope_ci95 <= kMaxHalfWidth) ||
-      pre_asymptotic(fit))
+  if (fit.points < kMinOrderPoints || !std::isfinite(fit.slope) || !(fit.slope_ci95 <= kMaxHalfWidth))
     return "inconclusive";
   const double bar = declared - kOrderTolerance;
+  if (pre_asymptotic(fit)) return certified_at_plateau(fit, bar) ? "as declared" : "inconclusive";
   if (fit.slope - fit.slope_ci95 >= bar) return "as declared";
   if (fit.slope + fit.slope_ci95 < bar) return "lower";
   return "inconclusive";

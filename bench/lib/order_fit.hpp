@@ -89,8 +89,20 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
 // "as declared" when the 95 % interval of the slope lies above declared -
 // 0.2, "lower" when it lies below, "inconclusive" when it straddles that,
 // is wider than +-0.3, rests on fewer than kMinOrderPoints points, or when
-// the smallest steps are pre-asymptotic (pre_asymptotic).
+// the smallest steps are pre-asymptotic (pre_asymptotic) and the plateau
+// does not bound the order from below (certified_at_plateau).
 std::string order_verdict(const OrderFit& fit, int declared);
+
+// A ladder the plateau cut short of kHalvingSlopes agreeing halvings (no
+// finer step can add one) certifies but never condemns: where its two
+// smallest-step halving slopes are both at least bar and the slope does not
+// fall towards small steps (by more than max(kHalvingAgreement, 0.05 p)),
+// and the window's interval lies above bar, the order is at least the
+// declared one down to the plateau. A method that loses its order falls
+// towards small steps; and slopes near the plateau flatten as the
+// reference's error or rounding creeps in, so a low slope there is no
+// evidence of a lower order.
+bool certified_at_plateau(const OrderFit& fit, double bar);
 
 // True when a fit with enough points has not shown its asymptotic range:
 // fewer than kHalvingSlopes halving slopes above the plateau, or slopes

@@ -97,6 +97,38 @@ TEST(OrderVerdictsBothWays, MovingSlopesThatMeetThePlateauHaveNoVerdict) {
   EXPECT_FALSE(wants_finer_steps(fit, 4));
 }
 
+// A ladder cut short by the plateau (floor 1e-9, so errors under 1e-7 are
+// left out) holds two halvings of an order-8 method between the ceiling and
+// the plateau: 10 h^8 there reads 8.0 and 8.0, which bound the order from
+// below; no finer step can add a third halving.
+TEST(OrderVerdictsBothWays, TwoHalvingsThePlateauEndsCertifyButNeverCondemn) {
+  const std::vector<double> h = ladder(12);
+  const OrderFit pure = fit_order(h, errors(h, [](double x) { return 10 * std::pow(x, 8); }), 1e-9, 0.1, 8, 1.0);
+  ASSERT_EQ(pure.halving_slopes.size(), 2u);
+  EXPECT_GT(pure.at_floor, 0);
+  EXPECT_FALSE(pure.asymptotic);
+  EXPECT_TRUE(certified_at_plateau(pure, 7.8));
+  EXPECT_EQ(order_verdict(pure, 8), "as declared");
+  // the same series declared 9: two slopes at 8 bound nothing above 8.8, and a
+  // ladder the plateau cut short never condemns
+  EXPECT_EQ(order_verdict(pure, 9), "inconclusive");
+  EXPECT_EQ(inconclusive_reason(pure, 9), "no asymptotic range above the plateau");
+  // an error that flattens into the plateau (9e-8 added, under the plateau's
+  // 1e-7 at small steps): the slope falls to 6.2 next to it; no verdict
+  // either way, although 6.2 is far below 8
+  const OrderFit flattening =
+      fit_order(h, errors(h, [](double x) { return 10 * std::pow(x, 8) + 9e-8; }), 1e-9, 0.1, 8, 1.0);
+  ASSERT_EQ(flattening.halving_slopes.size(), 2u);
+  EXPECT_LT(flattening.halving_slopes[0], 7.0);
+  EXPECT_EQ(order_verdict(flattening, 8), "inconclusive");
+  // an order lost towards small steps (3e-6 h added): the slopes fall from
+  // 7.8 to 1.1; never as declared
+  const OrderFit lost =
+      fit_order(h, errors(h, [](double x) { return 10 * std::pow(x, 8) + 3e-6 * x; }), 1e-9, 0.1, 8, 1.0);
+  EXPECT_NE(order_verdict(lost, 8), "as declared");
+  EXPECT_FALSE(certified_at_plateau(lost, 7.8));
+}
+
 OrderFit no_fit() {
   OrderFit fit;
   fit.slope = NAN;
