@@ -114,6 +114,8 @@ RegimeGrid parse_regime_grid(const std::string& text, const RegimeGrid& base) {
                        kKey);
     const std::string axis = part.substr(0, eq);
     if (axis == "held_out") {
+      if (std::find(given.begin(), given.end(), axis) != given.end()) throw InputError("held_out is given twice", kKey);
+      given.push_back(axis);
       const std::string value = part.substr(eq + 1);
       if (value != "none" && value != "default")
         throw InputError("held_out: expected none or default, got '" + value + "'", kKey);

@@ -75,6 +75,7 @@ TEST(RegimeGrid, BadGridsNameTheAxisAndTheValue) {
                   " is outside (0, 5) (the bowl's curvature 2a must be > 0 and the ball of radius 0.1 m must fit "
                   "its bottom, r 2a < 1)");
   EXPECT_EQ(grid_error("held_out=some"), "'regime': held_out: expected none or default, got 'some'");
+  EXPECT_EQ(grid_error("held_out=none;held_out=default"), "'regime': held_out is given twice");
   EXPECT_EQ(grid_error("spin=5,5.0000001"),
             "'regime': spin: the value 5 is given twice (values must differ in 6 digits)");
 }
