@@ -25,6 +25,10 @@ PER_SCENE = (
 )
 WHOLE = {
     answer.FIGURE: answer.CAPTION,
+    "regime-border.png": "The regime map's border: the flat/Lie time ratio of every grid cell where R feeds back "
+                         "against |ω0|/Ω, the ball's rotation rate over the bowl's frequency, with the fitted line, "
+                         "the crossover x* where it is 1 (shaded: its 95 % interval) and the held-out scenes "
+                         "(hollow: predicted wrong).",
     "stability.png": "Largest stable step per fixed-step method and scene (left; longer bars are more robust) "
                      "and how each method's runs ended (right; grey is ok, colours are the failures).",
     "scenes.png": "Each scene's landscape as shaded height contours, with the contact point's path where a "

@@ -8,7 +8,7 @@
 Writes answer.png (flat/Lie per scene where R feeds back: the first
 screen's figure), per scene convergence-, work-precision-,
 work-precision-best-, tolerance- and drift-<scene>.png (for a regime study only with
---scene-figures), regime-<target>.png (analysis/regime.py) and
+--scene-figures), regime-border.png and regime-<target>.png (analysis/regime.py) and
 horizon-<scene>.png per scene of the horizon study; then stability.png, scenes.png,
 ball-deforms.png (with --ball), ns-per-step.png (with --perf), summary.md,
 index.html (the answer, its figure, the other figures with captions and the
@@ -88,6 +88,7 @@ def build_figures(report, options=None, messages=None, log=None):
         attempt(f"drift-{scene}.png", lambda: figures.drift(report, scene, palette))
     if regime.cells(report):  # the regime study's heat maps, regime-<target>.png
         results = regime.regime_results(report, metric)
+        attempt(regime.BORDER_FIGURE, lambda: regime.border_figure(report, metric, results))
         for target in regime.TARGETS:
             attempt(regime.figure_name(target), lambda: regime.heat_map(report, target, metric, results))
     for scene in horizon.scenes(report):

@@ -450,8 +450,9 @@ int main(int argc, char** argv) {
                       "generated scenes); without it, the default preset's sweep without its stability study");
   run_cmd->add_option("--scenes", run.scenes, "comma-separated shipped scene names or JSON paths");
   run_cmd->add_option("--regime", run.regime,
-                      "the regime study's grid: default, full, or axes inertia=1,2,3;spin=0.1,5,50;"
-                      "roughness=0,0.3;t_end=1,10 (those not given: the regime preset's)");
+                      "the regime study's grid: default, full, or axes inertia=1,3;spin=0.1,5,50;"
+                      "roughness=0,0.3;t_end=1;bowl=0.1,0.5,2;speed=0.1,0.5 (those not given: the regime "
+                      "preset's), and held_out=none to leave out the held-out scenes");
   run_cmd->add_option("--integrators", run.integrators, "comma-separated registry names");
   run_cmd->add_option("--h", run.hs, "step sizes, e.g. 0.1,0.05 or 2^-3..2^-8");
   run_cmd->add_option("--tol", run.tols, "tolerances (rtol = atol) of adaptive methods, e.g. 1e-4,1e-8");

@@ -44,7 +44,14 @@ void check_value(const std::string& axis, double v) {
                      kKey);
   if ((axis == "spin" || axis == "roughness") && !(v >= 0.0))
     throw InputError(axis + ": " + label(v) + " is negative (expected a number >= 0)", kKey);
-  if (axis == "t_end" && !(v > 0.0)) throw InputError("t_end: " + label(v) + " is not > 0", kKey);
+  if ((axis == "t_end" || axis == "speed") && !(v > 0.0))
+    throw InputError(axis + ": " + label(v) + " is not > 0", kKey);
+  // the ball must fit the bowl's bottom: r kappa = 2 a r < 1 (docs/model.md)
+  if (axis == "bowl" && !(v > 0.0 && 2.0 * v * kRegimeRadius < 1.0))
+    throw InputError("bowl: a = " + label(v) + " is outside (0, " + label(0.5 / kRegimeRadius) +
+                         ") (the bowl's curvature 2a must be > 0 and the ball of radius " + label(kRegimeRadius) +
+                         " m must fit its bottom, r 2a < 1)",
+                     kKey);
 }
 
 std::vector<double> parse_values(const std::string& axis, const std::string& text) {
@@ -68,22 +75,30 @@ std::vector<double>& axis_of(RegimeGrid& grid, const std::string& axis) {
   if (axis == "inertia") return grid.inertia;
   if (axis == "spin") return grid.spin;
   if (axis == "roughness") return grid.roughness;
+  if (axis == "bowl") return grid.bowl;
+  if (axis == "speed") return grid.speed;
   return grid.t_end;
 }
 
 }  // namespace
 
 RegimeGrid default_regime_grid() {
-  // 3 x 3 x 2 x 2 = 36 scenes: the homogeneous ball against the chaplygin
-  // scenes' anisotropy and the limit, spin from slower than the rolling
-  // (|v| / r = 5 rad/s) to ten times it, smooth and bumpy, short and long
-  return {{1.0, 2.0, 3.0}, {0.1, 5.0, 50.0}, {0.0, 0.3}, {1.0, 10.0}};
+  // 2 x 3 x 2 x 1 x 3 x 2 = 72 scenes: the homogeneous ball against the
+  // triangle inequality's limit; spin from far slower than the rolling to
+  // ten times it; smooth and bumpy; bowls from bumpy-long's shallow a = 0.1
+  // to chaplygin-bowl's steep a = 2 (r kappa = 0.4), rolled slowly
+  // (chaplygin-bowl's 0.1 m/s) and at 0.5 m/s: the ball's rate over the
+  // bowl's frequency |omega0| / Omega from about 0.2 to 40, both sides of
+  // the crossover (docs/usage.md, "The regime study")
+  return {{1.0, 3.0}, {0.1, 5.0, 50.0}, {0.0, 0.3}, {1.0}, {0.1, 0.5, 2.0}, {0.1, 0.5}};
 }
 
 RegimeGrid full_regime_grid() {
-  // 4 x 5 x 4 x 4 = 320 scenes, to t_end = 1000 (references alone take
-  // minutes a scene there): a cluster's study, docs/usage.md
-  return {{1.0, 1.5, 2.0, 3.0}, {0.1, 1.0, 5.0, 20.0, 50.0}, {0.0, 0.1, 0.3, 0.5}, {1.0, 10.0, 100.0, 1000.0}};
+  // 4 x 5 x 4 x 4 x 3 x 3 = 2880 scenes, to t_end = 1000 (references alone
+  // take minutes a scene there): a cluster's study, docs/usage.md
+  return {{1.0, 1.5, 2.0, 3.0}, {0.1, 1.0, 5.0, 20.0, 50.0},
+          {0.0, 0.1, 0.3, 0.5}, {1.0, 10.0, 100.0, 1000.0},
+          {0.1, 0.5, 2.0},      {0.1, 0.5, 1.0}};
 }
 
 RegimeGrid parse_regime_grid(const std::string& text, const RegimeGrid& base) {
@@ -98,8 +113,18 @@ RegimeGrid parse_regime_grid(const std::string& text, const RegimeGrid& base) {
       throw InputError("expected AXIS=V1,V2,... for each axis, separated by ';' (or default, full), got '" + part + "'",
                        kKey);
     const std::string axis = part.substr(0, eq);
+    if (axis == "held_out") {
+      if (std::find(given.begin(), given.end(), axis) != given.end()) throw InputError("held_out is given twice", kKey);
+      given.push_back(axis);
+      const std::string value = part.substr(eq + 1);
+      if (value != "none" && value != "default")
+        throw InputError("held_out: expected none or default, got '" + value + "'", kKey);
+      grid.held_out = value == "default";
+      continue;
+    }
     if (std::find(kRegimeAxes.begin(), kRegimeAxes.end(), axis) == kRegimeAxes.end())
-      throw InputError("unknown axis '" + axis + "' (known: inertia, spin, roughness, t_end)", kKey);
+      throw InputError(
+          "unknown axis '" + axis + "' (known: inertia, spin, roughness, t_end, bowl, speed; and held_out)", kKey);
     if (std::find(given.begin(), given.end(), axis) != given.end())
       throw InputError("the axis " + axis + " is given twice", kKey);
     given.push_back(axis);
@@ -110,14 +135,39 @@ RegimeGrid parse_regime_grid(const std::string& text, const RegimeGrid& base) {
   return grid;
 }
 
+namespace {
+
+RegimeCell named(RegimeCell c, const std::string& prefix) {
+  c.scene = prefix + "-i" + label(c.inertia) + "-s" + label(c.spin) + "-r" + label(c.roughness) + "-t" +
+            label(c.t_end) + "-a" + label(c.bowl) + "-v" + label(c.speed);
+  return c;
+}
+
+}  // namespace
+
 std::vector<RegimeCell> regime_cells(const RegimeGrid& grid) {
   std::vector<RegimeCell> cells;
   for (double t : grid.t_end)
     for (double r : grid.roughness)
-      for (double s : grid.spin)
-        for (double i : grid.inertia)
-          cells.push_back({i, s, r, t, "regime-i" + label(i) + "-s" + label(s) + "-r" + label(r) + "-t" + label(t)});
+      for (double a : grid.bowl)
+        for (double v : grid.speed)
+          for (double s : grid.spin)
+            for (double i : grid.inertia) cells.push_back(named({i, s, r, t, a, v, ""}, "regime"));
   return cells;
+}
+
+std::vector<RegimeCell> regime_held_out_cells() {
+  // inertia, spin, roughness, t_end, bowl, speed: bowl and speed off every
+  // value of the default and full grids (most others too); |omega0| / Omega
+  // about 0.17, 0.18, 1.6, 2.7 and 18
+  const std::vector<RegimeCell> cells = {{2.5, 0.5, 0.0, 1.0, 1.0, 0.05, ""},
+                                         {2.8, 1.0, 0.05, 1.0, 3.0, 0.15, ""},
+                                         {2.2, 2.0, 0.2, 1.0, 0.3, 0.2, ""},
+                                         {1.5, 10.0, 0.2, 2.0, 1.0, 0.3, ""},
+                                         {2.5, 30.0, 0.0, 2.0, 0.2, 0.8, ""}};
+  std::vector<RegimeCell> out;
+  for (const RegimeCell& c : cells) out.push_back(named(c, "regime-offgrid"));
+  return out;
 }
 
 }  // namespace rb

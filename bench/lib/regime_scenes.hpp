@@ -20,15 +20,33 @@ std::string regime_scene_json(const RegimeCell& cell);
 // homogeneous ball, given without "inertia").
 std::vector<double> regime_moments(double inertia_ratio);
 
-// Every cell's scene, parsed and checked; a cell the scene check refuses
-// throws InputError (key "regime") naming the cell and the reason.
+// Omega, the angular frequency of a ball (radius r, mass m, mean principal
+// moment I) rolling to and fro at the bottom of a bowl of curvature kappa:
+// its centre moves on a sphere of radius 1 / kappa - r, so
+// Omega^2 = g kappa / ((1 - r kappa) (1 + I / (m r^2))); 0 where kappa <= 0.
+double bowl_frequency(double kappa, double radius, double mass, double mean_moment, double gravity);
+
+// The regime's two rates at a scene's start: |omega0| and Omega of the
+// largest principal curvature at the start contact. The crossover's
+// predictor is their ratio (analysis/regime.py).
+struct RegimeRates {
+  double omega0 = 0.0;
+  double bowl_frequency = 0.0;
+};
+RegimeRates regime_rates(const Scene& scene);
+
+// Every cell's scene, parsed and checked, then (when grid.held_out) the
+// held-out scenes: regime_held_out_cells() and the shipped chaplygin-*
+// scenes; a cell the scene check refuses throws InputError (key "regime")
+// naming the cell and the reason.
 std::vector<Scene> regime_scenes(const RegimeGrid& grid);
 
 // The grid's axes as the report's options hold them.
 nlohmann::json regime_axes_json(const RegimeGrid& grid);
 
-// The report's "regime" section: the axes, what every scene shares, and per
-// cell its scene name, coordinates, moments and start rates.
+// The report's "regime" section: the axes, what every scene shares, per
+// cell its scene name, coordinates, moments, start and rates, and the
+// held-out scenes with their rates.
 nlohmann::json regime_json(const RegimeGrid& grid, const std::vector<Scene>& scenes);
 
 }  // namespace rb

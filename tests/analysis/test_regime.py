@@ -105,21 +105,28 @@ class RegimeMap(unittest.TestCase):
         for target in regime.TARGETS:
             rows = md.parse_table(text, f"### Regime map at worst error {target:.0e}")
             self.assertEqual([r[:4] for r in rows], [["1", "5", "0", "1"], ["3", "5", "0", "1"]])
-            self.assertTrue(rows[1][4].startswith("rkmk4 (" if target != 1e-9 else "rkmk-dp54-adaptive ("), rows[1])
+            # an older grid's report: no bowl, speed or rates
+            self.assertEqual(rows[1][4:7], ["—", "—", "—"])
+            self.assertTrue(rows[1][7].startswith("rkmk4 (" if target != 1e-9 else "rkmk-dp54-adaptive ("), rows[1])
         rows = md.parse_table(text, "### Regime map at worst error 1e-06")
-        self.assertEqual(rows[1][5:], ["order 4: rk4-projected / rkmk4", "2.50 [2.25–3.00]"])
-        self.assertEqual(rows[0][5:], ["order 5: odeint-dopri5-adaptive / rkmk-dp54-adaptive", "0.50 [0.45–0.60]"])
+        self.assertEqual(rows[1][8:], ["order 4: rk4-projected / rkmk4", "2.50 [2.25–3.00]"])
+        self.assertEqual(rows[0][8:], ["order 5: odeint-dopri5-adaptive / rkmk-dp54-adaptive", "0.50 [0.45–0.60]"])
 
     def test_the_findings_line(self):
         lines = findings.findings_section(self.report)
         line = next(x for x in lines if x.startswith("- Regime map"))
         self.assertEqual(line, "- Regime map (2 generated scenes × worst error 1e-04, 1e-06, 1e-09, figures "
                                "regime-<target>.png): where R feeds back (inertia ratio > 1) the Lie side of the best "
-                               "same-order pair is cheaper in 3 of 3 cell × target, flat/Lie 2.00 to 2.50 (median "
-                               "2.50); on the homogeneous ball the Lie side of the best same-order pair is cheaper "
-                               "in 0 of 3 cell × target, flat/Lie 0.50 to 0.50 (median 0.50). Cheapest method most "
+                               "same-order pair is cheaper in 3, the flat side in 0, and 0 are ties (the repeats' "
+                               "range holds 1) of 3 measured cell × target, flat/Lie 2.00 to 2.50 (median 2.50); on "
+                               "the homogeneous ball the Lie side of the best same-order pair is cheaper in 0, the "
+                               "flat side in 3, and 0 are ties (the repeats' range holds 1) of 3 measured cell × "
+                               "target, flat/Lie 0.50 to 0.50 (median 0.50). Cheapest method most "
                                "often (of 6 cell × target): odeint-dopri5-adaptive 3, rkmk4 2, rkmk-dp54-adaptive 1; 0 "
                                "reached by none.")
+        # the cells lack the rates (an older report): no border to fit
+        self.assertIn("- Regime border: no crossover to fit: under two decided cells where R feeds back, or one side "
+                      "wins them all.", lines)
 
     def test_a_report_without_a_regime_section_has_none(self):
         plain = make_report()

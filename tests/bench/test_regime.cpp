@@ -4,6 +4,7 @@
 // which shards carry into the merge.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -36,15 +37,22 @@ TEST(RegimeGrid, AxesGivenReplaceThePresetsAndTheRestStay) {
   EXPECT_EQ(g.inertia, default_regime_grid().inertia);
   EXPECT_EQ(g.roughness, default_regime_grid().roughness);
   EXPECT_EQ(parse_regime_grid("full", default_regime_grid()).t_end, (std::vector<double>{1, 10, 100, 1000}));
-  EXPECT_EQ(regime_cells(default_regime_grid()).size(), 36u);
-  EXPECT_EQ(regime_cells(full_regime_grid()).size(), 320u);
+  EXPECT_EQ(regime_cells(default_regime_grid()).size(), 72u);
+  EXPECT_EQ(regime_cells(full_regime_grid()).size(), 2880u);
+  EXPECT_TRUE(g.held_out);
+  const RegimeGrid without = parse_regime_grid("bowl=0.5,2;speed=0.1;held_out=none", default_regime_grid());
+  EXPECT_EQ(without.bowl, (std::vector<double>{0.5, 2.0}));
+  EXPECT_EQ(without.speed, (std::vector<double>{0.1}));
+  EXPECT_FALSE(without.held_out);
+  EXPECT_TRUE(parse_regime_grid("held_out=default", without).held_out);
 }
 
 TEST(RegimeGrid, BadGridsNameTheAxisAndTheValue) {
   EXPECT_EQ(grid_error(""), "'regime': the grid is empty (give default, full or AXIS=V1,V2;...)");
   EXPECT_EQ(grid_error("spin"),
             "'regime': expected AXIS=V1,V2,... for each axis, separated by ';' (or default, full), got 'spin'");
-  EXPECT_EQ(grid_error("mass=1"), "'regime': unknown axis 'mass' (known: inertia, spin, roughness, t_end)");
+  EXPECT_EQ(grid_error("mass=1"),
+            "'regime': unknown axis 'mass' (known: inertia, spin, roughness, t_end, bowl, speed; and held_out)");
   EXPECT_EQ(grid_error("spin=1;spin=2"), "'regime': the axis spin is given twice");
   EXPECT_EQ(grid_error("spin=1,x"), "'regime': spin: expected finite numbers separated by commas, got '1,x'");
   EXPECT_EQ(grid_error("spin=1,"), "'regime': spin: expected finite numbers separated by commas, got '1,'");
@@ -59,6 +67,15 @@ TEST(RegimeGrid, BadGridsNameTheAxisAndTheValue) {
   EXPECT_EQ(grid_error("spin=-1"), "'regime': spin: -1 is negative (expected a number >= 0)");
   EXPECT_EQ(grid_error("roughness=-0.1"), "'regime': roughness: -0.1 is negative (expected a number >= 0)");
   EXPECT_EQ(grid_error("t_end=0"), "'regime': t_end: 0 is not > 0");
+  EXPECT_EQ(grid_error("speed=0"), "'regime': speed: 0 is not > 0");
+  EXPECT_EQ(grid_error("speed=-0.5"), "'regime': speed: -0.5 is not > 0");
+  for (const char* bad : {"0", "-1", "5", "7.5"})
+    EXPECT_EQ(grid_error(std::string("bowl=") + bad),
+              std::string("'regime': bowl: a = ") + bad +
+                  " is outside (0, 5) (the bowl's curvature 2a must be > 0 and the ball of radius 0.1 m must fit "
+                  "its bottom, r 2a < 1)");
+  EXPECT_EQ(grid_error("held_out=some"), "'regime': held_out: expected none or default, got 'some'");
+  EXPECT_EQ(grid_error("held_out=none;held_out=default"), "'regime': held_out is given twice");
   EXPECT_EQ(grid_error("spin=5,5.0000001"),
             "'regime': spin: the value 5 is given twice (values must differ in 6 digits)");
 }
@@ -81,7 +98,7 @@ TEST(RegimeScenes, EveryCellIsAValidSceneWithItsCoordinates) {
   const RegimeGrid grid = default_regime_grid();
   const std::vector<Scene> scenes = regime_scenes(grid);
   const std::vector<RegimeCell> cells = regime_cells(grid);
-  ASSERT_EQ(scenes.size(), cells.size());
+  ASSERT_EQ(scenes.size(), cells.size() + 9u);  // then the held-out scenes
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const Scene& s = scenes[i];
     EXPECT_EQ(s.name, cells[i].scene);
@@ -91,21 +108,88 @@ TEST(RegimeScenes, EveryCellIsAValidSceneWithItsCoordinates) {
     EXPECT_EQ(s.ball.inertia.has_value(), cells[i].inertia != 1.0) << s.name;
     EXPECT_EQ(make_problem(s).model().anisotropic(), cells[i].inertia != 1.0) << s.name;
   }
-  EXPECT_EQ(cells.front().scene, "regime-i1-s0.1-r0-t1");
-  EXPECT_EQ(cells.back().scene, "regime-i3-s50-r0.3-t10");
+  EXPECT_EQ(cells.front().scene, "regime-i1-s0.1-r0-t1-a0.1-v0.1");
+  EXPECT_EQ(cells.back().scene, "regime-i3-s50-r0.3-t1-a2-v0.5");
+}
+
+TEST(RegimeScenes, TheStartRollsRoundTheBowlAtTheCellsSpeed) {
+  for (const RegimeCell& c : regime_cells(default_regime_grid())) {
+    const Scene s = parse_scene(regime_scene_json(c));
+    EXPECT_EQ(s.params.at("a"), c.bowl);
+    ASSERT_TRUE(s.start.horizontal_velocity.has_value()) << s.name;
+    EXPECT_EQ(*s.start.horizontal_velocity, Vec2(0.0, c.speed));
+    // on the x axis, at the radius of the circle the ball keeps at that
+    // speed in the bowl's harmonic bottom: rho Omega = speed
+    const double omega = bowl_frequency(2.0 * c.bowl, 0.1, 1.0, 0.004, 9.81);
+    EXPECT_EQ(s.start.contact.y(), 0.0);
+    EXPECT_NEAR(s.start.contact.x() * omega, c.speed, 1e-15) << s.name;
+  }
+}
+
+TEST(RegimeScenes, TheBowlFrequencyAndTheStartRatesAgainstClosedForms) {
+  // the homogeneous ball in a sphere of radius 1 / kappa: its centre swings
+  // on radius 1 / kappa - r, slowed by the rolling to 5/7 of the point mass's
+  EXPECT_NEAR(bowl_frequency(4.0, 0.1, 1.0, 0.004, 9.81), std::sqrt(9.81 / (0.25 - 0.1) * 5.0 / 7.0), 1e-12);
+  EXPECT_NEAR(bowl_frequency(0.2, 0.1, 2.0, 0.002, 9.81), std::sqrt(9.81 / (5.0 - 0.1) / 1.1), 1e-12);
+  EXPECT_EQ(bowl_frequency(0.0, 0.1, 1.0, 0.004, 9.81), 0.0);   // a plane: no bowl
+  EXPECT_EQ(bowl_frequency(-1.0, 0.1, 1.0, 0.004, 9.81), 0.0);  // a crest
+  // chaplygin-bowl: 2 (x^2 + y^2) at (0.02, 0), f_x = 0.08: kappa1 is the
+  // curvature across the slope, f_yy / sqrt(1 + f_x^2), above the one down
+  // it, f_xx / (1 + f_x^2)^(3/2); omega0 = N x u0 / r + 3 N, u0 = (0, 0.1, 0)
+  const RegimeRates bowl = regime_rates(load_scene("chaplygin-bowl"));
+  const double kappa = 4.0 / std::sqrt(1.0 + 0.08 * 0.08);
+  EXPECT_NEAR(bowl.bowl_frequency, bowl_frequency(kappa, 0.1, 1.0, 0.004, 9.81), 1e-12);
+  EXPECT_NEAR(bowl.omega0, std::sqrt(1.0 + 9.0), 1e-12);
+  EXPECT_EQ(regime_rates(load_scene("chaplygin-plane")).bowl_frequency, 0.0);
+}
+
+TEST(RegimeScenes, TheHeldOutScenesRunBesideTheGridUnlessLeftOut) {
+  const RegimeGrid grid =
+      parse_regime_grid("inertia=3;spin=5;roughness=0;t_end=1;bowl=0.5;speed=0.1", default_regime_grid());
+  const std::vector<Scene> scenes = regime_scenes(grid);
+  std::vector<std::string> names;
+  for (const Scene& s : scenes) names.push_back(s.name);
+  std::vector<std::string> expected = {"regime-i3-s5-r0-t1-a0.5-v0.1"};
+  for (const RegimeCell& c : regime_held_out_cells()) expected.push_back(c.scene);
+  for (const char* shipped : {"chaplygin-bowl", "chaplygin-bumpy-long", "chaplygin-plane", "chaplygin-valley"})
+    expected.push_back(shipped);
+  EXPECT_EQ(names, expected);
+  // off the grid: bowl and speed off every value of the default and full grids
+  auto on = [](const std::vector<double>& axis, double v) {
+    return std::find(axis.begin(), axis.end(), v) != axis.end();
+  };
+  for (const RegimeGrid& g : {default_regime_grid(), full_regime_grid()})
+    for (const RegimeCell& c : regime_held_out_cells()) {
+      EXPECT_EQ(c.scene.rfind("regime-offgrid-i", 0), 0u) << c.scene;
+      EXPECT_FALSE(on(g.bowl, c.bowl) || on(g.speed, c.speed)) << c.scene;
+    }
+  const json section = regime_json(grid, scenes);
+  ASSERT_EQ(section.at("held_out").size(), 9u);
+  EXPECT_EQ(section.at("held_out")[0].at("kind"), "off-grid");
+  EXPECT_EQ(section.at("held_out")[5].at("scene"), "chaplygin-bowl");
+  EXPECT_EQ(section.at("held_out")[5].at("kind"), "shipped");
+  EXPECT_EQ(section.at("held_out")[7].at("bowl_frequency"), 0.0);  // chaplygin-plane
+  EXPECT_EQ(section.at("axes").at("held_out"), true);
+
+  RegimeGrid without = grid;
+  without.held_out = false;
+  EXPECT_EQ(regime_scenes(without).size(), 1u);
+  EXPECT_TRUE(regime_json(without, scenes).at("held_out").empty());
 }
 
 TEST(RegimeScenes, ACellTheSceneCheckRefusesIsAnErrorNamingIt) {
   // bumps of slope 100: the start sits on a crest curved so sharply that
   // gravity cannot hold the rolling ball to it
   try {
-    regime_scenes(parse_regime_grid("inertia=1;spin=5;roughness=100;t_end=1", default_regime_grid()));
+    regime_scenes(parse_regime_grid("inertia=1;spin=5;roughness=100;t_end=1;bowl=0.1;speed=0.5;held_out=none",
+                                    default_regime_grid()));
     FAIL() << "a scene the ball does not fit was generated";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()).rfind("'regime': the cell inertia 1, spin 5 rad/s, roughness 100, t_end 1 makes "
-                                          "no valid scene: 'start': the ball leaves the surface at once: the normal "
-                                          "force F . N = ",
-                                          0),
+    EXPECT_EQ(std::string(e.what()).rfind(
+                  "'regime': the cell inertia 1, spin 5 rad/s, roughness 100, t_end 1, bowl "
+                  "0.1, speed 0.5 m/s makes no valid scene: 'start': the ball leaves the surface at once: the normal "
+                  "force F . N = ",
+                  0),
               0u)
         << e.what();
   }
@@ -117,7 +201,7 @@ TEST(RegimePreset, GeneratesItsScenesWithoutAStabilityStudy) {
   EXPECT_TRUE(spec.scenes.empty());
   EXPECT_FALSE(spec.stability.enabled);
   const std::vector<SweepScene> scenes = prepare_scenes(spec, false);
-  ASSERT_EQ(scenes.size(), 36u);
+  ASSERT_EQ(scenes.size(), 72u + 5u + 4u);  // the grid, then the held-out scenes
   EXPECT_EQ(scenes[5].scene.name, regime_cells(*spec.regime)[5].scene);
 }
 
@@ -125,7 +209,8 @@ TEST(RegimePreset, GeneratesItsScenesWithoutAStabilityStudy) {
 // two shards that merge into it.
 TEST(RegimeCli, TheReportRecordsTheGridAndShardsMergeIntoIt) {
   const std::string common =
-      "run --regime 'inertia=1,3;spin=5;roughness=0.3;t_end=0.5' --integrators rk4,rkmk4 --h 2^-3..2^-5 "
+      "run --regime 'inertia=1,3;spin=5;roughness=0.3;t_end=0.5;bowl=0.1;speed=0.5;held_out=none' --integrators "
+      "rk4,rkmk4 --h 2^-3..2^-5 "
       "--repeats 1 --out ";
   const auto whole = testing::cli_temp_file("regime-whole.json");
   testing::CliOutcome o = testing::run_rollbench(common + whole.string());
@@ -134,7 +219,7 @@ TEST(RegimeCli, TheReportRecordsTheGridAndShardsMergeIntoIt) {
   EXPECT_EQ(report.at("preset"), "regime");
   const json& cells = report.at("regime").at("cells");
   ASSERT_EQ(cells.size(), 2u);
-  EXPECT_EQ(cells[0].at("scene"), "regime-i1-s5-r0.3-t0.5");
+  EXPECT_EQ(cells[0].at("scene"), "regime-i1-s5-r0.3-t0.5-a0.1-v0.5");
   EXPECT_EQ(cells[0].at("moments"), nullptr);
   EXPECT_EQ(cells[1].at("inertia"), 3.0);
   EXPECT_EQ(cells[1].at("roughness"), 0.3);
@@ -160,7 +245,8 @@ TEST(RegimeCli, TheReportRecordsTheGridAndShardsMergeIntoIt) {
   // shards of two grids are two sweeps
   const auto other = testing::cli_temp_file("regime-other.json");
   o = testing::run_rollbench(
-      "run --regime 'inertia=1,2;spin=5;roughness=0.3;t_end=0.5' --integrators rk4,rkmk4 --h 2^-3..2^-5 "
+      "run --regime 'inertia=1,2;spin=5;roughness=0.3;t_end=0.5;bowl=0.1;speed=0.5;held_out=none' --integrators "
+      "rk4,rkmk4 --h 2^-3..2^-5 "
       "--repeats 1 --shard 1/2 --out " +
       other.string());
   ASSERT_EQ(o.code, 0) << o.err;
@@ -190,8 +276,8 @@ TEST(RegimeCli, TheGridGoesWithTheRegimePresetAndNoScenes) {
 
 TEST(RegimeScenes, ALongHorizonMakesASafeSceneName) {
   // "%.6g" writes 1e6 as "1e+06", and a scene name takes no '+'
-  const std::vector<Scene> scenes =
-      regime_scenes(parse_regime_grid("inertia=1;spin=5;roughness=0.1;t_end=1e6", default_regime_grid()));
+  const std::vector<Scene> scenes = regime_scenes(parse_regime_grid(
+      "inertia=1;spin=5;roughness=0.1;t_end=1e6;bowl=2;speed=0.1;held_out=none", default_regime_grid()));
   ASSERT_EQ(scenes.size(), 1u);
   EXPECT_NE(scenes[0].name.find("1e06"), std::string::npos) << scenes[0].name;
   EXPECT_EQ(scenes[0].name.find('+'), std::string::npos) << scenes[0].name;

@@ -153,7 +153,7 @@ same_accuracy "$tmp/whole2.json" "$tmp/study2/report.json" || fail "the complete
 echo "== ok: --only 1 completed the study, equal to the unsharded run"
 
 # 3. the regime study on a small grid: 3 shards merged and plotted equal the unsharded run
-regime=(--preset regime --regime "inertia=1,3;spin=5,50;roughness=0.3;t_end=0.5"
+regime=(--preset regime --regime "inertia=1,3;spin=5,50;roughness=0.3;t_end=0.5;bowl=0.1;speed=0.5;held_out=none"
   --integrators rk4,rkmk4,odeint-dopri5-adaptive,rkmk-dp54-adaptive --h 2^-3..2^-7 --tol 1e-4,1e-6,1e-8,1e-10
   --repeats 1)
 "$rollbench" run "${regime[@]}" --no-finer-steps --out "$tmp/regime-whole.json" >/dev/null 2>&1 || fail "the unsharded regime run failed"
