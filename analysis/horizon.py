@@ -166,7 +166,7 @@ def figure(report, scene, palette):
     names = invariant_names(entries)
     panels = [(entries, key, label, short) for key, label, short in SERIES]
     panels += [([invariant_view(r, n) for r in entries], INVARIANT + n,
-                "relative error |I − I$_0$| / its start magnitude, largest per window", n) for n in names]
+                "|I − I$_0$| / start magnitude, largest per window", n) for n in names]
     fig = figures.new_figure(11, 4.75 * len(panels))
     axes = fig.subplots(len(panels), 1)
     first = entries[0]
