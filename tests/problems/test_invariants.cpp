@@ -182,6 +182,13 @@ TEST(Invariants, ASceneMayClaimOnlyWhatItsLandscapeHas) {
   EXPECT_EQ(error_of(scene_text(paraboloid, R"({ "a": 1.0 })", R"("routh-paraboloid")")),
             "'invariants': must be an array of names, not string");
   EXPECT_EQ(error_of(scene_text(paraboloid, R"({ "a": 1.0 })", "[3]")), "'invariants': must be a string, not number");
+  EXPECT_EQ(error_of(scene_text(paraboloid, R"({ "a": -1.0 })", R"(["routh-paraboloid"])")),
+            "'invariants': 'routh-paraboloid' needs a bowl, a > 0, not a = -1");
+  EXPECT_EQ(error_of(scene_text("a*(x^2 + y^2) + 0*rho", R"({ "a": 1.0, "rho": 1.0 })", R"(["routh-sphere"])")),
+            "'invariants': the landscape is not the spherical bowl f = rho - sqrt(rho^2 - x^2 - y^2) with rho = 1 (at "
+            "x = 0, y = 0)");
+  EXPECT_EQ(error_of(scene_text("rho - sqrt(rho^2 - x^2 - y^2)", R"({ "rho": 1.0 })", R"(["routh-sphere"])")),
+            "no error");
   EXPECT_EQ(error_of(scene_text(paraboloid, R"({ "a": 6.0 })", R"(["routh-paraboloid"])")),
             "'invariants': 'routh-paraboloid' needs the ball to fit the bottom of the bowl, 2 a r < 1, not 1.2");
 }
