@@ -48,14 +48,16 @@ def invariant_names(entries):
 
 
 def invariant_view(run, name):
-    """The run with the integral's error under the key 'invariant:<name>' and its fit under fit[key], so that
-    what draws and states the energy's series does the same for it (never the same as another's)."""
+    """The run with the integral's error under the key 'invariant:<name>', its fit under fit[key] and its twin
+    (the report's same_as.invariants) under same_as[key], so that what draws and states the energy's series does
+    the same for it."""
     key = INVARIANT + name
     found = next((i for i in (run.get("invariants") or []) if i.get("name") == name), {})
     view = dict(run)
     view[key] = found.get("error") or []
     view["fit"] = dict(run.get("fit") or {}, **{key: found.get("fit") or {}})
-    view["same_as"] = None
+    twin = ((run.get("same_as") or {}).get("invariants") or {}).get(name)
+    view["same_as"] = {key: twin}
     return view
 
 
@@ -230,14 +232,15 @@ def _invariant_table(entries):
             view = invariant_view(r, name)
             f = fit_of(view, INVARIANT + name)
             rows.append([r["scene"], r["integrator"], name, exponent_text(f), halves_text(f),
-                         md.fmt(rp.num((view[INVARIANT + name] or [None])[-1]))])
+                         md.fmt(rp.num((view[INVARIANT + name] or [None])[-1])),
+                         same_as(view, INVARIANT + name) or "—"])
     if not rows:
         return []
     intro = ("First integrals beyond the energy that the scene declares (docs/model.md, \"Invariants beyond the "
              "energy\"): each one's error |I − I₀| relative to its magnitude at the start (the sum of its terms' "
              "absolute values), its envelope fitted as the energy's; \"rounding\": below 100 ε √n.")
     return ["", INVARIANT_HEADING, "", intro, ""] + md.table(
-        ["scene", "integrator", "integral", "p", "early → late", "relative error at the end"], rows)
+        ["scene", "integrator", "integral", "p", "early → late", "relative error at the end", "same as"], rows)
 
 
 def _same_text(run):

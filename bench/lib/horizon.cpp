@@ -272,22 +272,57 @@ bool same_series(const json& a, const json& b, double rounding) {
 
 }  // namespace
 
+namespace {
+
+// A first integral's error series and its fit's rounding level in a run, by name (null, NaN when absent).
+json invariant_error(const json& run, const std::string& name, double* rounding) {
+  *rounding = kNaN;
+  if (!run.contains("invariants") || !run["invariants"].is_array()) return json();
+  for (const json& i : run["invariants"])
+    if (i.value("name", "") == name) {
+      if (i.contains("fit") && i["fit"].contains("rounding_level") && i["fit"]["rounding_level"].is_number())
+        *rounding = i["fit"]["rounding_level"].get<double>();
+      return i.value("error", json());
+    }
+  return json();
+}
+
+}  // namespace
+
 void mark_same_series(json& runs) {
   const auto index = [&](std::size_t i) { return runs[i].value("index", i); };
+  // the earliest earlier run of run i's scene with the same times and a series that series(run) equals
+  const auto first_twin = [&](std::size_t i, const auto& series) {
+    double ri = kNaN;
+    const json a = series(runs[i], &ri);
+    std::size_t first = runs.size();
+    for (std::size_t j = 0; j < runs.size(); ++j) {
+      if (!(index(j) < index(i) && (first == runs.size() || index(j) < index(first)) &&
+            runs[j].value("scene", "") == runs[i].value("scene", "") &&
+            runs[j].value("t", json()) == runs[i].value("t", json())))
+        continue;
+      double rj = kNaN;
+      const json b = series(runs[j], &rj);
+      if (same_series(b, a, std::max(ri, rj))) first = j;
+    }
+    return first < runs.size() ? json(runs[first].value("integrator", "")) : json();
+  };
   for (std::size_t i = 0; i < runs.size(); ++i) {
     json same = {{"energy_error", nullptr}, {"rotation_defect", nullptr}};
-    for (const char* key : {"energy_error", "rotation_defect"}) {
-      // the earliest earlier run of the scene with the same times and series
-      std::size_t first = runs.size();
-      for (std::size_t j = 0; j < runs.size(); ++j)
-        if (index(j) < index(i) && (first == runs.size() || index(j) < index(first)) &&
-            runs[j].value("scene", "") == runs[i].value("scene", "") &&
-            runs[j].value("t", json()) == runs[i].value("t", json()) &&
-            same_series(runs[j].value(key, json()), runs[i].value(key, json()),
-                        std::max(rounding_of(runs[i], key), rounding_of(runs[j], key))))
-          first = j;
-      if (first < runs.size()) same[key] = runs[first].value("integrator", "");
-    }
+    for (const char* key : {"energy_error", "rotation_defect"})
+      same[key] = first_twin(i, [&](const json& run, double* rounding) {
+        *rounding = rounding_of(run, key);
+        return run.value(key, json());
+      });
+    // each first integral's error, by name
+    json invariants = json::object();
+    if (runs[i].contains("invariants") && runs[i]["invariants"].is_array())
+      for (const json& inv : runs[i]["invariants"]) {
+        const std::string name = inv.value("name", "");
+        invariants[name] =
+            first_twin(i, [&](const json& run, double* rounding) { return invariant_error(run, name, rounding); });
+      }
+    same["invariants"] = invariants;
     runs[i]["same_as"] = same;
   }
 }

@@ -92,7 +92,8 @@ inline constexpr double kSameSeriesRise = 100.0;
 // Marks, in the report's horizon runs, every series that is the same as
 // that of an earlier run (by index) of its scene:
 // "same_as": {"energy_error": name or null, "rotation_defect": name or
-// null}, the name of the first such run. The sweep and the merge both call it.
+// null, "invariants": {integral: name or null}}, the name of the first such
+// run. The sweep and the merge both call it.
 void mark_same_series(nlohmann::json& runs);
 
 // The sample step counts: round(10^(k / per_decade)) for k = 0, 1, ...,

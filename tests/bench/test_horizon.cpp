@@ -256,6 +256,23 @@ TEST(Horizon, SeriesTheSameByConstructionAreMarkedOnce) {
     // rk4's R drifts, the others' stays at rounding: never "the same" at rounding
     EXPECT_TRUE(r["same_as"]["rotation_defect"].is_null()) << name << " on " << scene;
   }
+  // a homogeneous ball's first integrals depend on (v, alpha) alone: on the
+  // paraboloid the same four are twins in Routh's J1 and J2 as well
+  spec.scenes = {"paraboloid"};
+  sweep.horizon = spec;
+  const nlohmann::json para = horizon_json(run_horizon(sweep, [](const std::string&) {}))["runs"];
+  ASSERT_EQ(para.size(), 6u);
+  for (const nlohmann::json& r : para) {
+    const std::string name = r["integrator"];
+    const nlohmann::json& same = r["same_as"]["invariants"];
+    ASSERT_EQ(same.size(), 2u) << name;
+    for (const char* integral : {"routh-paraboloid.J1", "routh-paraboloid.J2"}) {
+      if (name == "rkmk4" || name == "cf4" || name == "rk4-projected")
+        EXPECT_EQ(same[integral], "rk4") << name << " " << integral;
+      else EXPECT_TRUE(same[integral].is_null()) << name << " " << integral << ": " << same[integral];
+    }
+  }
+  EXPECT_TRUE(runs[0]["same_as"]["invariants"].empty());  // bumpy-long declares none
   // a series moved by more than its rounding level is another series
   nlohmann::json pair = nlohmann::json::array({runs[0], runs[1]});
   pair[1]["energy_error"][pair[1]["energy_error"].size() - 1] =
