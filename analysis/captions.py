@@ -17,7 +17,8 @@ PER_SCENE = (
      "the tolerance means what it says, and its height how far the error sits above or below it."),
     ("drift-", "Energy error and rotation defect on {scene}, against time over a long run (top) and against "
      "cost for each sweep run (bottom): flat is bounded, slope 1 linear growth, slope 2 quadratic."),
-    ("horizon-", "Energy error (top) and rotation defect (bottom), the largest so far, against time on {scene}, "
+    ("horizon-", "Energy error (top) and rotation defect, then the relative error of each first integral the "
+     "scene declares (Routh's, the Chaplygin ball's), each the largest per window, against time on {scene}, "
      "log–log: the legend's p is the fitted growth err ∝ tᵖ over the shaded window."),
     ("regime-", "Flat/Lie time ratio of the best same-order pair over the regime study's grid at an error of "
      "{scene}: blue cells are where keeping R on SO(3) pays (above 1), red where the flat method wins, and each "

@@ -5,7 +5,11 @@ growth exponent p of err ~ C t^p in the legend; the "Long horizons" section
 of summary.md and its line in the findings. A fit whose early and late
 halves disagree (the report's `asymptotic`) reads "not yet asymptotic
 (early → late)" instead of one p; a series the report marks the same as an
-earlier run's (`same_as`) is drawn and stated once, under both names."""
+earlier run's (`same_as`) is drawn and stated once, under both names. A
+scene that declares first integrals beyond the energy (the runs'
+`invariants`: Routh's, the Chaplygin ball's) gets one more panel per
+integral, its relative error drawn and fitted the same way, and its own
+table and findings."""
 import math
 
 import numpy as np
@@ -15,6 +19,7 @@ from analysis import markdown as md
 from analysis import report as rp
 
 HEADING = "## Long horizons"
+INVARIANT_HEADING = "### First integrals beyond the energy"
 # (key in a run and in its fit, axis label, short name)
 SERIES = (("energy_error", "energy error |H − H$_0$| (J), largest per window", "energy error"),
           ("rotation_defect", "rotation defect ‖R$^T$R − I‖$_F$, largest per window", "rotation defect"))
@@ -32,6 +37,28 @@ def scenes(report):
 
 def fit_of(run, key):
     return (run.get("fit") or {}).get(key) or {}
+
+
+INVARIANT = "invariant:"
+
+
+def invariant_names(entries):
+    """The names of the first integrals the runs record, in their order."""
+    return rp.unique(i.get("name") for r in entries for i in (r.get("invariants") or []) if i.get("name"))
+
+
+def invariant_view(run, name):
+    """The run with the integral's error under the key 'invariant:<name>', its fit under fit[key] and its twin
+    (the report's same_as.invariants) under same_as[key], so that what draws and states the energy's series does
+    the same for it."""
+    key = INVARIANT + name
+    found = next((i for i in (run.get("invariants") or []) if i.get("name") == name), {})
+    view = dict(run)
+    view[key] = found.get("error") or []
+    view["fit"] = dict(run.get("fit") or {}, **{key: found.get("fit") or {}})
+    twin = ((run.get("same_as") or {}).get("invariants") or {}).get(name)
+    view["same_as"] = {key: twin}
+    return view
 
 
 def not_asymptotic(fit):
@@ -133,17 +160,23 @@ def _panel(ax, entries, key, label, short, palette):
 
 
 def figure(report, scene, palette):
-    """horizon-<scene>.png: energy error (top) and rotation defect (bottom) against t, log-log."""
+    """horizon-<scene>.png: energy error (top), rotation defect, then each first integral's error the scene
+    declares, against t, log-log."""
     entries = [r for r in runs(report, scene) if r.get("t")]
     if not entries:
         raise figures.NothingToPlot(f"no horizon runs for scene {scene}")
-    fig = figures.new_figure(11, 9.5)
-    axes = fig.subplots(2, 1)
+    names = invariant_names(entries)
+    panels = [(entries, key, label, short) for key, label, short in SERIES]
+    panels += [([invariant_view(r, n) for r in entries], INVARIANT + n,
+                "|I − I$_0$| / start magnitude, largest per window", n) for n in names]
+    fig = figures.new_figure(11, 4.75 * len(panels))
+    axes = fig.subplots(len(panels), 1)
     first = entries[0]
-    for ax, (key, label, short) in zip(axes, SERIES):
-        _panel(ax, entries, key, label, short, palette)
-        ax.set_title(f"{scene} ({kind(first)}): {short} over {count_text(first.get('steps_planned'))} steps "
-                     f"of h = {rp.num(first.get('h')):g} s", fontsize=10)
+    for ax, (shown, key, label, short) in zip(axes, panels):
+        _panel(ax, shown, key, label, short, palette)
+        ax.set_title(f"{scene} ({kind(first)}): {short}{' error' if key.startswith(INVARIANT) else ''} over "
+                     f"{count_text(first.get('steps_planned'))} steps of h = {rp.num(first.get('h')):g} s",
+                     fontsize=10)
     fig.subplots_adjust(hspace=0.3)
     return fig
 
@@ -186,8 +219,28 @@ def section(report):
     lines += md.table(["scene", "kind", "integrator", "status", "steps", "energy p", "early → late",
                        "energy error at the end (J)", "defect p", "early → late", "defect at the end",
                        "wall s", "same as"], rows)
+    lines += _invariant_table(entries)
     total = sum(rp.num(r.get("wall_s")) for r in entries if math.isfinite(rp.num(r.get("wall_s"))))
     return lines + ["", f"The study took {total:.1f} s of wall time ({len(entries)} runs).", ""]
+
+
+def _invariant_table(entries):
+    """The first integrals' errors, as the energy's: per scene, method and integral."""
+    rows = []
+    for r in entries:
+        for name in invariant_names([r]):
+            view = invariant_view(r, name)
+            f = fit_of(view, INVARIANT + name)
+            rows.append([r["scene"], r["integrator"], name, exponent_text(f), halves_text(f),
+                         md.fmt(rp.num((view[INVARIANT + name] or [None])[-1])),
+                         same_as(view, INVARIANT + name) or "—"])
+    if not rows:
+        return []
+    intro = ("First integrals beyond the energy that the scene declares (docs/model.md, \"Invariants beyond the "
+             "energy\"): each one's error |I − I₀| relative to its magnitude at the start (the sum of its terms' "
+             "absolute values), its envelope fitted as the energy's; \"rounding\": below 100 ε √n.")
+    return ["", INVARIANT_HEADING, "", intro, ""] + md.table(
+        ["scene", "integrator", "integral", "p", "early → late", "relative error at the end", "same as"], rows)
 
 
 def _same_text(run):
@@ -222,6 +275,24 @@ def _exponents(entries, done, key):
     return sorted(steady), rounding, moving
 
 
+def _invariant_parts(entries, done):
+    """Per first integral: the range of its exponents, who keeps it at rounding, whose fit still moves."""
+    parts = []
+    for name in invariant_names(entries):
+        views = [invariant_view(r, name) for r in done]
+        steady, rounding, moving = _exponents(views, views, INVARIANT + name)
+        if len(steady) == 1:
+            parts.append(f"{name} error ∝ tᵖ with p = {steady[0][0]:.2f} ({steady[0][1]})")
+        elif steady:
+            parts.append(f"{name} error ∝ tᵖ with p from {steady[0][0]:.2f} ({steady[0][1]}) to "
+                         f"{steady[-1][0]:.2f} ({steady[-1][1]})")
+        if rounding:
+            parts.append(f"{name} at rounding for {', '.join(n for _, n in rounding)}")
+        if moving:
+            parts.append(f"{name} not yet asymptotic (p early → late) for {', '.join(moving)}")
+    return parts
+
+
 def finding_lines(report):
     """One line per scene for the findings: the energy exponents (or that they are not yet asymptotic), who
     keeps R at rounding, who stopped; series identical by construction once, under all their names."""
@@ -253,6 +324,7 @@ def finding_lines(report):
                   if not same_as(r, key) and " = " in shown_name(entries, r, key)]
         if shared:
             parts.append("identical energy series (one tableau stepping (v, α)): " + "; ".join(shared))
+        parts += _invariant_parts(entries, done)
         lines.append(f"- Long horizon on {scene} ({kind(first)}, {count_text(first.get('steps_planned'))} steps of "
                      f"h = {rp.num(first.get('h')):g} s): " + ("; ".join(parts) or "no run reached the end") + ".")
     return lines

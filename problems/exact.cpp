@@ -126,32 +126,6 @@ std::string num(double x) {
   return s.str();
 }
 
-// Points where a landscape is compared with the one a solution assumes,
-// scaled by a length (the bowl's radius), plus the start contact.
-std::vector<Vec2> sample_points(double scale, const Vec2& start) {
-  std::vector<Vec2> p;
-  for (const auto& [x, y] : std::initializer_list<std::pair<double, double>>{
-           {0.0, 0.0}, {0.3, -0.2}, {-0.55, 0.4}, {0.1, 0.7}, {-0.6, -0.5}, {0.8, 0.05}})
-    p.emplace_back(scale * x, scale * y);
-  p.push_back(start);
-  return p;
-}
-
-// Throws unless f, grad f and Hess f of the scene's landscape equal want at
-// every point, relative to 1 + |value|.
-template <class Want>
-void expect_landscape(const RollingBall& model, const std::vector<Vec2>& points, Want want, const std::string& what) {
-  for (const Vec2& p : points) {
-    const Jet2<double> got = model.landscape().at(p.x(), p.y());
-    const std::array<double, 6> w = want(p.x(), p.y());
-    const std::array<double, 6> g = {got.f, got.fx, got.fy, got.fxx, got.fxy, got.fyy};
-    for (int i = 0; i < 6; ++i)
-      if (!(std::abs(g[i] - w[i]) <= 1e-9 * (1.0 + std::abs(w[i]))))
-        throw InputError("the landscape is not " + what + " (at x = " + num(p.x()) + ", y = " + num(p.y()) + ")",
-                         "exact");
-  }
-}
-
 double required_param(const Scene& scene, const char* name, const std::string& why) {
   const auto it = scene.params.find(name);
   if (it == scene.params.end())
@@ -160,6 +134,34 @@ double required_param(const Scene& scene, const char* name, const std::string& w
 }
 
 }  // namespace
+
+std::vector<Vec2> landscape_sample_points(double scale, const Vec2& start) {
+  std::vector<Vec2> p;
+  for (const auto& [x, y] : std::initializer_list<std::pair<double, double>>{
+           {0.0, 0.0}, {0.3, -0.2}, {-0.55, 0.4}, {0.1, 0.7}, {-0.6, -0.5}, {0.8, 0.05}})
+    p.emplace_back(scale * x, scale * y);
+  p.push_back(start);
+  return p;
+}
+
+void expect_landscape(const RollingBall& model, const std::vector<Vec2>& points, const LandscapeJet& want,
+                      const std::string& what, const std::string& key) {
+  for (const Vec2& p : points) {
+    const Jet2<double> got = model.landscape().at(p.x(), p.y());
+    const std::array<double, 6> w = want(p.x(), p.y());
+    const std::array<double, 6> g = {got.f, got.fx, got.fy, got.fxx, got.fxy, got.fyy};
+    for (int i = 0; i < 6; ++i)
+      if (!(std::abs(g[i] - w[i]) <= 1e-9 * (1.0 + std::abs(w[i]))))
+        throw InputError("the landscape is not " + what + " (at x = " + num(p.x()) + ", y = " + num(p.y()) + ")", key);
+  }
+}
+
+LandscapeJet spherical_bowl(double rho) {
+  return [rho](double x, double y) {
+    const double g = std::sqrt(rho * rho - x * x - y * y), g3 = g * g * g;
+    return std::array<double, 6>{rho - g, x / g, y / g, 1.0 / g + x * x / g3, x * y / g3, 1.0 / g + y * y / g3};
+  };
+}
 
 std::shared_ptr<const ExactSolution> make_exact(const Scene& scene, const RollingBall& model) {
   const std::string& name = scene.exact;
@@ -174,28 +176,24 @@ std::shared_ptr<const ExactSolution> make_exact(const Scene& scene, const Rollin
 
   if (name == "plane") {
     expect_landscape(
-        model, sample_points(1.0, a0), [](double, double) { return std::array<double, 6>{}; }, "the plane f = 0");
+        model, landscape_sample_points(1.0, a0), [](double, double) { return std::array<double, 6>{}; },
+        "the plane f = 0", "exact");
     return std::make_shared<PlaneSolution>(r, a0, omega0, R0);
   }
   if (name == "incline") {
     const double s = required_param(scene, "s", "the slope of f = -s*y");
     expect_landscape(
-        model, sample_points(1.0, a0),
+        model, landscape_sample_points(1.0, a0),
         [s](double, double y) { return std::array<double, 6>{-s * y, 0.0, -s, 0.0, 0.0, 0.0}; },
-        "the incline f = -s*y with s = " + num(s));
+        "the incline f = -s*y with s = " + num(s), "exact");
     return std::make_shared<InclineSolution>(s, r, g0, a0, omega0, R0);
   }
   if (name == "bowl-pendulum") {
     const double rho = required_param(scene, "rho", "the radius of the bowl f = rho - sqrt(rho^2 - x^2 - y^2)");
     if (!(rho > r)) throw InputError("the bowl's radius rho = " + num(rho) + " must exceed the ball's", "exact");
     if (!(a0.norm() < rho)) throw InputError("the start contact lies outside the bowl", "exact");
-    expect_landscape(
-        model, sample_points(0.9 * rho / std::sqrt(2.0), a0),
-        [rho](double x, double y) {
-          const double g = std::sqrt(rho * rho - x * x - y * y), g3 = g * g * g;
-          return std::array<double, 6>{rho - g, x / g, y / g, 1.0 / g + x * x / g3, x * y / g3, 1.0 / g + y * y / g3};
-        },
-        "the spherical bowl f = rho - sqrt(rho^2 - x^2 - y^2) with rho = " + num(rho));
+    expect_landscape(model, landscape_sample_points(0.9 * rho / std::sqrt(2.0), a0), spherical_bowl(rho),
+                     "the spherical bowl f = rho - sqrt(rho^2 - x^2 - y^2) with rho = " + num(rho), "exact");
     if (omega0.norm() != 0.0)
       throw InputError("'bowl-pendulum' starts at rest; the start's omega (or velocity and spin) must be 0", "exact");
     return std::make_shared<BowlPendulumSolution>(rho, r, g0, a0, R0);

@@ -3,6 +3,8 @@
 // form"), the anchors of the tests and the exact references of the reports.
 // Scenes name them under "exact"; make_exact checks that the scene's
 // landscape and start are the ones the solution assumes.
+#include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -83,5 +85,22 @@ std::shared_ptr<const ExactSolution> make_exact(const Scene& scene, const Rollin
 
 // The names a scene may give under "exact" besides "none", sorted.
 std::vector<std::string> exact_names();
+
+// A landscape a closed form (or a first integral) assumes: f, f_x, f_y,
+// f_xx, f_xy, f_yy at (x, y).
+using LandscapeJet = std::function<std::array<double, 6>(double, double)>;
+
+// Points where a landscape is compared with the one assumed, scaled by a
+// length (the bowl's radius), plus the start contact.
+std::vector<Vec2> landscape_sample_points(double scale, const Vec2& start);
+
+// Throws InputError (at key) unless f, grad f and Hess f of the model's
+// landscape equal want at every point, relative to 1 + |value|; what names
+// the landscape assumed in the message.
+void expect_landscape(const RollingBall& model, const std::vector<Vec2>& points, const LandscapeJet& want,
+                      const std::string& what, const std::string& key);
+
+// The spherical bowl f = rho - sqrt(rho^2 - x^2 - y^2).
+LandscapeJet spherical_bowl(double rho);
 
 }  // namespace rb

@@ -10,7 +10,9 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "problems/invariants.hpp"
 #include "problems/rolling_ball.hpp"
 #include "problems/status.hpp"
 
@@ -53,13 +55,15 @@ class Problem {
 
  public:
   Problem(std::string name, RollingBall model, FlatState y0, double t_end, Domain domain = {},
-          std::shared_ptr<const ExactSolution> exact = nullptr)
+          std::shared_ptr<const ExactSolution> exact = nullptr,
+          std::vector<std::shared_ptr<const FirstIntegrals>> invariants = {})
       : name_(std::move(name)),
         model_(std::move(model)),
         y0_(y0),
         t_end_(t_end),
         domain_(domain),
-        exact_(std::move(exact)) {}
+        exact_(std::move(exact)),
+        invariants_(std::move(invariants)) {}
 
   const std::string& name() const { return name_; }
   const RollingBall& model() const { return model_; }
@@ -68,6 +72,8 @@ class Problem {
   const Domain& domain() const { return domain_; }
   // nullptr when the scene has no closed form.
   const ExactSolution* exact() const { return exact_.get(); }
+  // The first integrals beyond the energy the scene declares (checked on load).
+  const std::vector<std::shared_ptr<const FirstIntegrals>>& invariants() const { return invariants_; }
 
   // The flat view: dy = F(y), 14 numbers each.
   template <class T>
@@ -123,6 +129,7 @@ class Problem {
   double t_end_;
   Domain domain_;
   std::shared_ptr<const ExactSolution> exact_;
+  std::vector<std::shared_ptr<const FirstIntegrals>> invariants_;
 };
 
 }  // namespace rb

@@ -12,7 +12,9 @@
 
 #include "problems/exact.hpp"
 #include "problems/input_error.hpp"
+#include "problems/invariants.hpp"
 #include "problems/safe_name.hpp"
+#include "problems/utf8.hpp"
 
 namespace rb {
 
@@ -241,11 +243,30 @@ SceneStart read_start(const json& v) {
   return s;
 }
 
+// "invariants": an array of known names, each once; whether the landscape
+// has them is checked with the model (make_invariants).
+std::vector<std::string> read_invariant_names(const json& v) {
+  const char* key = "invariants";
+  const std::vector<std::string> known = invariant_names();
+  if (!v.is_array()) throw InputError(std::string("must be an array of names, not ") + v.type_name(), key);
+  std::vector<std::string> names;
+  for (const json& item : v) {
+    const std::string name = string_at(item, key);
+    if (std::find(known.begin(), known.end(), name) == known.end())
+      throw InputError("unknown invariant '" + valid_utf8(name) + "' (known: " + list_of(known) + ")", key);
+    if (std::find(names.begin(), names.end(), name) != names.end())
+      throw InputError("the invariant '" + name + "' is named more than once", key);
+    names.push_back(name);
+  }
+  return names;
+}
+
 // The scene's keys and their own ranges; no landscape yet.
 Scene read_scene(const json& root, const std::string& source) {
   if (!root.is_object()) throw InputError(std::string("a scene must be a JSON object, not ") + root.type_name());
-  reject_unknown_keys(
-      root, "", {"name", "description", "landscape", "params", "domain", "ball", "gravity", "start", "t_end", "exact"});
+  reject_unknown_keys(root, "",
+                      {"name", "description", "landscape", "params", "domain", "ball", "gravity", "start", "t_end",
+                       "exact", "invariants"});
   Scene s;
   s.source = source;
   // a name, never a path: it is shown, and a file name may be made of it
@@ -282,6 +303,7 @@ Scene read_scene(const json& root, const std::string& source) {
   const std::vector<std::string> known = exact_names();
   if (s.exact != "none" && std::find(known.begin(), known.end(), s.exact) == known.end())
     throw InputError("unknown exact solution '" + s.exact + "' (known: none, " + list_of(known) + ")", "exact");
+  if (const json* inv = optional_key(root, "invariants")) s.invariants = read_invariant_names(*inv);
   return s;
 }
 
@@ -405,6 +427,7 @@ Scene parse_scene(std::string_view json_text, const std::string& source) {
   RollingBall model = make_model(scene);
   check_start(scene, model);
   auto exact = build_exact(scene, model);  // throws (key "exact") when it does not fit the scene
+  (void)make_invariants(scene, model);     // throws (key "invariants") when the landscape lacks one
   scene.text = std::string(json_text);
   scene.checked_model = std::make_shared<const SceneModel>(SceneModel{
       scene.landscape, scene.params, scene.ball, scene.gravity, std::move(model), scene.exact, scene.start, exact});
@@ -458,7 +481,8 @@ Problem make_problem(const Scene& scene) {
   RollingBall model = checked != nullptr && checked->made_of(scene) ? checked->model : make_model(scene);
   const FlatState y0 = start_state(scene, model);
   auto exact = checked != nullptr && checked->exact_fits(scene) ? checked->exact : build_exact(scene, model);
-  return Problem(scene.name, std::move(model), y0, scene.t_end, scene.domain, std::move(exact));
+  auto invariants = make_invariants(scene, model);
+  return Problem(scene.name, std::move(model), y0, scene.t_end, scene.domain, std::move(exact), std::move(invariants));
 }
 
 }  // namespace rb

@@ -48,8 +48,11 @@ struct Scene {
   SceneBall ball;
   double gravity = 9.81;  // g0 >= 0; gravity is (0, 0, -g0)
   SceneStart start;
-  double t_end = 0.0;             // > 0
-  std::string exact = "none";     // a name of exact_names() or "none"
+  double t_end = 0.0;          // > 0
+  std::string exact = "none";  // a name of exact_names() or "none"
+  // first integrals beyond the energy the scene declares (invariant_names()),
+  // checked against the landscape and the ball on load
+  std::vector<std::string> invariants;
   std::string source = "<text>";  // the file it came from, or "<text>"
   std::string text;               // the JSON text it was parsed from (the sweep's cache key)
   // The model parse_scene compiled to check the start: make_problem reuses

@@ -13,6 +13,31 @@ Drift DriftMeter::at(const FlatState& y) const {
   return {std::abs(d.energy - start_energy_), d.rotation_defect};
 }
 
+InvariantMeter::InvariantMeter(const Problem& problem) : problem_(&problem) {
+  for (const auto& family : problem.invariants())
+    for (const std::string& q : family->quantities()) names_.push_back(family->name() + "." + q);
+  std::vector<double> magnitudes;
+  start_ = values(problem.y0(), &magnitudes);
+  for (const double m : magnitudes) scale_.push_back(m > 0.0 ? m : 1.0);
+}
+
+std::vector<double> InvariantMeter::values(const FlatState& y, std::vector<double>* magnitudes) const {
+  std::vector<double> v(names_.size()), m(names_.size());
+  std::size_t at = 0;
+  for (const auto& family : problem_->invariants()) {
+    family->at(y, v.data() + at, m.data() + at);
+    at += family->quantities().size();
+  }
+  if (magnitudes) *magnitudes = std::move(m);
+  return v;
+}
+
+std::vector<double> InvariantMeter::errors(const FlatState& y) const {
+  std::vector<double> e = values(y, nullptr);
+  for (std::size_t i = 0; i < e.size(); ++i) e[i] = std::abs(e[i] - start_[i]) / scale_[i];
+  return e;
+}
+
 double energy_scale(const Problem& problem) {
   const BallParams& b = problem.model().params();
   const Derived d = problem.model().derived(problem.y0());

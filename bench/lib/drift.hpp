@@ -3,6 +3,9 @@
 // and `rollbench trajectory`: the energy error |H(y) - H(y0)| against the
 // problem's start and the rotation defect ||R^T R - I||_F (docs/model.md,
 // invariants).
+#include <string>
+#include <vector>
+
 #include "integrators/integrator.hpp"
 
 namespace rb {
@@ -21,6 +24,24 @@ class DriftMeter {
  private:
   const RollingBall* model_;
   double start_energy_;
+};
+
+// The errors of the first integrals a problem's scene declares
+// (docs/model.md, "Invariants beyond the energy"), relative: |I(y) - I(y0)|
+// over I's magnitude at the start (the sum of its terms' absolute values;
+// 1 where that is 0, a start at rest).
+class InvariantMeter {
+ public:
+  explicit InvariantMeter(const Problem& problem);
+  // "routh-paraboloid.J1", ..., in the order of errors()
+  const std::vector<std::string>& names() const { return names_; }
+  std::vector<double> errors(const FlatState& y) const;
+
+ private:
+  std::vector<double> values(const FlatState& y, std::vector<double>* magnitudes) const;
+  const Problem* problem_;
+  std::vector<std::string> names_;
+  std::vector<double> start_, scale_;
 };
 
 // The scene's energy scale: m g0 r plus the kinetic energy it starts with,

@@ -132,16 +132,26 @@ HorizonRecord horizon_run(const Problem& problem, const Integrator& m, const Hor
   r.stop_time = run.stop_time;
   r.cost = run.cost;
   const DriftMeter meter(problem);
+  const InvariantMeter invariants(problem);
+  for (const std::string& name : invariants.names()) r.invariants.push_back({name, {}, {}});
   // the envelope: the largest of each over the states measured in the
   // sample's window (the previous sample's step, its own step], so that a
   // late window does not carry an early peak as a running maximum would
   double energy = kNaN, defect = kNaN;
+  std::vector<double> invariant(r.invariants.size(), kNaN);
+  // a non-finite value does not raise the largest (NaN fails >=)
+  const auto raise = [](double& largest, double value) {
+    if (!(largest >= value) && std::isfinite(value)) largest = value;
+  };
   std::size_t next = 0;
   for (std::size_t i = 0; i < run.output.t.size(); ++i) {
     const Drift d = meter.at(run.output.y[i]);
-    // a non-finite value does not raise the largest (NaN fails >=)
-    if (!(energy >= d.energy) && std::isfinite(d.energy)) energy = d.energy;
-    if (!(defect >= d.rotation_defect) && std::isfinite(d.rotation_defect)) defect = d.rotation_defect;
+    raise(energy, d.energy);
+    raise(defect, d.rotation_defect);
+    if (!invariant.empty()) {
+      const std::vector<double> e = invariants.errors(run.output.y[i]);
+      for (std::size_t k = 0; k < e.size(); ++k) raise(invariant[k], e[k]);
+    }
     const long n = std::lround(run.output.t[i] / spec.h);
     while (next < samples.size() && samples[next] < n) ++next;
     if (next < samples.size() && samples[next] == n) {
@@ -149,17 +159,25 @@ HorizonRecord horizon_run(const Problem& problem, const Integrator& m, const Hor
       r.energy_error.push_back(energy);
       r.rotation_defect.push_back(defect);
       energy = defect = kNaN;
+      for (std::size_t k = 0; k < invariant.size(); ++k) {
+        r.invariants[k].error.push_back(invariant[k]);
+        invariant[k] = kNaN;
+      }
     }
   }
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double t_from = r.t_end * std::pow(10.0, -spec.fit_decades);
   r.energy_fit = fit_growth(r.t, r.energy_error, t_from, r.t_end, rounding_level(spec.steps, r.energy_scale));
   r.defect_fit = fit_growth(r.t, r.rotation_defect, t_from, r.t_end, rounding_level(spec.steps, 1.0));
-  for (GrowthFit* f : {&r.energy_fit, &r.defect_fit})
-    f->asymptotic = std::abs(f->p_late - f->p_early) <= spec.asymptotic_spread;
+  // the invariants' errors are relative: their rounding level is the defect's
+  for (InvariantSeries& s : r.invariants)
+    s.fit = fit_growth(r.t, s.error, t_from, r.t_end, rounding_level(spec.steps, 1.0));
+  std::vector<GrowthFit*> fits = {&r.energy_fit, &r.defect_fit};
+  for (InvariantSeries& s : r.invariants) fits.push_back(&s.fit);
+  for (GrowthFit* f : fits) f->asymptotic = std::abs(f->p_late - f->p_early) <= spec.asymptotic_spread;
   if (r.status != Status::ok) {
     // a run that stopped has no growth law to its end: its samples stay, no fit
-    for (GrowthFit* f : {&r.energy_fit, &r.defect_fit}) {
+    for (GrowthFit* f : fits) {
       const double rounding = f->rounding_level;
       *f = GrowthFit{};
       f->t_from = t_from;
@@ -213,10 +231,13 @@ HorizonResults run_horizon(const SweepSpec& spec, const std::function<void(const
         HorizonRecord r = horizon_run(problem, find_integrator(name), hs);
         r.index = index;
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::string invariants;
+        for (const InvariantSeries& s : r.invariants)
+          invariants += ", " + s.name + " p = " + fixed(s.fit.p, "%.2f") + (s.fit.at_rounding ? " (rounding)" : "");
         progress("horizon: " + name + " on " + r.scene + ": " + std::string(status_name(r.status)) + ", energy p = " +
                  fixed(r.energy_fit.p, "%.2f") + ", rotation defect p = " + fixed(r.defect_fit.p, "%.2f") +
-                 (r.defect_fit.at_rounding ? " (rounding)" : "") + ", " + fixed(r.wall_s, "%.2f") + " s (" +
-                 progress_line("horizon", index + 1, total, elapsed) + ")");
+                 (r.defect_fit.at_rounding ? " (rounding)" : "") + invariants + ", " + fixed(r.wall_s, "%.2f") +
+                 " s (" + progress_line("horizon", index + 1, total, elapsed) + ")");
         out.runs.push_back(std::move(r));
       }
       ++index;
@@ -251,29 +272,70 @@ bool same_series(const json& a, const json& b, double rounding) {
 
 }  // namespace
 
+namespace {
+
+// A first integral's error series and its fit's rounding level in a run, by name (null, NaN when absent).
+json invariant_error(const json& run, const std::string& name, double* rounding) {
+  *rounding = kNaN;
+  if (!run.contains("invariants") || !run["invariants"].is_array()) return json();
+  for (const json& i : run["invariants"])
+    if (i.value("name", "") == name) {
+      if (i.contains("fit") && i["fit"].contains("rounding_level") && i["fit"]["rounding_level"].is_number())
+        *rounding = i["fit"]["rounding_level"].get<double>();
+      return i.value("error", json());
+    }
+  return json();
+}
+
+}  // namespace
+
 void mark_same_series(json& runs) {
   const auto index = [&](std::size_t i) { return runs[i].value("index", i); };
+  // the earliest earlier run of run i's scene with the same times and a series that series(run) equals
+  const auto first_twin = [&](std::size_t i, const auto& series) {
+    double ri = kNaN;
+    const json a = series(runs[i], &ri);
+    std::size_t first = runs.size();
+    for (std::size_t j = 0; j < runs.size(); ++j) {
+      if (!(index(j) < index(i) && (first == runs.size() || index(j) < index(first)) &&
+            runs[j].value("scene", "") == runs[i].value("scene", "") &&
+            runs[j].value("t", json()) == runs[i].value("t", json())))
+        continue;
+      double rj = kNaN;
+      const json b = series(runs[j], &rj);
+      if (same_series(b, a, std::max(ri, rj))) first = j;
+    }
+    return first < runs.size() ? json(runs[first].value("integrator", "")) : json();
+  };
   for (std::size_t i = 0; i < runs.size(); ++i) {
     json same = {{"energy_error", nullptr}, {"rotation_defect", nullptr}};
-    for (const char* key : {"energy_error", "rotation_defect"}) {
-      // the earliest earlier run of the scene with the same times and series
-      std::size_t first = runs.size();
-      for (std::size_t j = 0; j < runs.size(); ++j)
-        if (index(j) < index(i) && (first == runs.size() || index(j) < index(first)) &&
-            runs[j].value("scene", "") == runs[i].value("scene", "") &&
-            runs[j].value("t", json()) == runs[i].value("t", json()) &&
-            same_series(runs[j].value(key, json()), runs[i].value(key, json()),
-                        std::max(rounding_of(runs[i], key), rounding_of(runs[j], key))))
-          first = j;
-      if (first < runs.size()) same[key] = runs[first].value("integrator", "");
-    }
+    for (const char* key : {"energy_error", "rotation_defect"})
+      same[key] = first_twin(i, [&](const json& run, double* rounding) {
+        *rounding = rounding_of(run, key);
+        return run.value(key, json());
+      });
+    // each first integral's error, by name
+    json invariants = json::object();
+    if (runs[i].contains("invariants") && runs[i]["invariants"].is_array())
+      for (const json& inv : runs[i]["invariants"]) {
+        const std::string name = inv.value("name", "");
+        invariants[name] =
+            first_twin(i, [&](const json& run, double* rounding) { return invariant_error(run, name, rounding); });
+      }
+    same["invariants"] = invariants;
     runs[i]["same_as"] = same;
   }
 }
 
 json horizon_json(const HorizonResults& results) {
   json runs = json::array();
-  for (const HorizonRecord& r : results.runs)
+  for (const HorizonRecord& r : results.runs) {
+    json invariants = json::array();
+    for (const InvariantSeries& s : r.invariants) {
+      json error = json::array();
+      for (const double e : s.error) error.push_back(number(e));
+      invariants.push_back({{"name", s.name}, {"error", error}, {"fit", fit_json(s.fit)}});
+    }
     runs.push_back({{"index", r.index},
                     {"scene", r.scene},
                     {"r_feeds_back", r.r_feeds_back},
@@ -295,7 +357,9 @@ json horizon_json(const HorizonResults& results) {
                     {"t", r.t},
                     {"energy_error", r.energy_error},
                     {"rotation_defect", r.rotation_defect},
-                    {"fit", {{"energy_error", fit_json(r.energy_fit)}, {"rotation_defect", fit_json(r.defect_fit)}}}});
+                    {"fit", {{"energy_error", fit_json(r.energy_fit)}, {"rotation_defect", fit_json(r.defect_fit)}}},
+                    {"invariants", invariants}});
+  }
   mark_same_series(runs);
   return {{"runs", runs}};
 }

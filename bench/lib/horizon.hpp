@@ -45,6 +45,14 @@ inline constexpr int kMinGrowthPoints = 4;
 GrowthFit fit_growth(const std::vector<double>& t, const std::vector<double>& err, double t_from, double t_to,
                      double rounding_level);
 
+// The error of one first integral of the scene (InvariantMeter: relative to
+// its magnitude at the start), recorded and fitted like the energy error.
+struct InvariantSeries {
+  std::string name;  // "routh-paraboloid.J1"
+  std::vector<double> error;
+  GrowthFit fit;
+};
+
 struct HorizonRecord {
   std::size_t index = 0;  // position in the full (unsharded) study
   std::string scene;
@@ -64,6 +72,8 @@ struct HorizonRecord {
   // in the window (the previous sample time, t]; NaN where none is finite
   std::vector<double> t, energy_error, rotation_defect;
   GrowthFit energy_fit, defect_fit;
+  // the scene's declared first integrals, in InvariantMeter's order
+  std::vector<InvariantSeries> invariants;
 };
 
 struct HorizonResults {
@@ -82,7 +92,8 @@ inline constexpr double kSameSeriesRise = 100.0;
 // Marks, in the report's horizon runs, every series that is the same as
 // that of an earlier run (by index) of its scene:
 // "same_as": {"energy_error": name or null, "rotation_defect": name or
-// null}, the name of the first such run. The sweep and the merge both call it.
+// null, "invariants": {integral: name or null}}, the name of the first such
+// run. The sweep and the merge both call it.
 void mark_same_series(nlohmann::json& runs);
 
 // The sample step counts: round(10^(k / per_decade)) for k = 0, 1, ...,

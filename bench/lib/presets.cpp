@@ -30,13 +30,15 @@ std::vector<double> step_ladder(int from, int fine_to, int coarse_to) {
 
 // The horizon study of the presets (docs/usage.md#the-horizon-study): the
 // bumpy bowl with a homogeneous ball and with an anisotropic one (the same
-// landscape and start, R feeding back or not); the best fixed-step method of
+// landscape and start, R feeding back or not), and two scenes with first
+// integrals beyond the energy (Routh's in the paraboloid, the Chaplygin
+// ball's on the plane, whose errors it records); the best fixed-step method of
 // each family at order 4 (rk4 and odeint-rk4: one tableau, two codes) and at
 // order 1 (euler, exp-euler: flat and on the group).
 HorizonSpec horizon_study(long steps) {
   HorizonSpec h;
   h.enabled = true;
-  h.scenes = {"bumpy-long", "chaplygin-bumpy-long"};
+  h.scenes = {"bumpy-long", "chaplygin-bumpy-long", "paraboloid", "chaplygin-plane"};
   h.integrators = {"euler",         "exp-euler",      "rk4",   "odeint-rk4", "gsl-rk4",
                    "rk4-projected", "rk4-quaternion", "rkmk4", "cf4",        "cg4a"};
   h.steps = steps;

@@ -188,12 +188,85 @@ class HorizonFromAHandMadeReport(unittest.TestCase):
         # its defect is its own: drawn
         self.assertIn("rk4-projected: p = 0.50 ± 0.01 (rounding)", [x.get_label() for x in labelled(defect)])
 
+    def test_a_scene_without_invariants_has_no_panel_or_table_for_them(self):
+        palette = style.Palette(rp.families(self.report))
+        self.assertEqual(len(horizon.figure(self.report, "bumpy-long", palette).get_axes()), 3 - 1)
+        self.assertNotIn(horizon.INVARIANT_HEADING, self.markdown)
+
     def test_a_report_without_the_study(self):
         report = syn.make_report()
         self.assertEqual(horizon.runs(report), [])
         self.assertIn("no horizon study", "\n".join(horizon.section(report)))
         self.assertEqual(horizon.finding_lines(report), [])
         self.assertEqual(horizon.scenes(report), [])  # plot.py draws horizon-<scene>.png for these only
+
+
+def with_invariants(report):
+    """A paraboloid whose runs record Routh's two integrals: rk4's grow like t and t^2, rkmk4's stay at
+    rounding, euler stopped, cf4's are rk4's (the report's same_as)."""
+    report = dict(report)
+    runs = [horizon_run(0, "paraboloid", "rk4", "rk", (1.0, 1e-9), (1.0, 1e-6)),
+            horizon_run(1, "paraboloid", "rkmk4", "rkmk", (0.5, 1e-10), (0.5, 1e-16)),
+            horizon_run(2, "paraboloid", "euler", "rk", None, None, status="domain", stop=12.0)]
+    twin = horizon_run(3, "paraboloid", "cf4", "cf", (1.0, 1e-9), (0.5, 1e-16))
+    twin["same_as"] = {"energy_error": "rk4", "rotation_defect": None,
+                       "invariants": {"routh-paraboloid.J1": "rk4", "routh-paraboloid.J2": "rk4"}}
+    runs.append(twin)
+    laws = {"rk4": ((1.0, 1e-8), (2.0, 1e-12)), "rkmk4": ((0.5, 1e-16), (0.5, 1e-16)), "euler": (None, None),
+            "cf4": ((1.0, 1e-8), (2.0, 1e-12))}
+    for run in runs:
+        run["invariants"] = []
+        for name, law in zip(("routh-paraboloid.J1", "routh-paraboloid.J2"), laws[run["integrator"]]):
+            p, c = law or (3.0, 1e-3)
+            entry = {"name": name, "error": [c * x ** p for x in run["t"]]}
+            entry["fit"] = fit(p, c, at_rounding=c < 1e-13) if law else no_fit("the run stopped at t = 12 (domain)")
+            run["invariants"].append(entry)
+    report["horizon"] = {"runs": runs}
+    return report
+
+
+class HorizonInvariants(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.report = with_invariants(syn.make_report())
+        cls.markdown = summary.summary_markdown(cls.report)
+
+    def test_each_integral_gets_a_panel_with_its_exponents(self):
+        palette = style.Palette(rp.families(self.report))
+        axes = horizon.figure(self.report, "paraboloid", palette).get_axes()
+        self.assertEqual(len(axes), 4)
+        self.assertIn("routh-paraboloid.J1 error", axes[2].get_title())
+        self.assertIn("routh-paraboloid.J2 error", axes[3].get_title())
+        j1 = [line.get_label() for line in labelled(axes[2])]
+        j2 = [line.get_label() for line in labelled(axes[3])]
+        self.assertIn("rk4 = cf4: p = 1.00 ± 0.01", j1)
+        self.assertIn("rk4 = cf4: p = 2.00 ± 0.01", j2)
+        self.assertFalse(any(x.startswith("cf4") for x in j1 + j2), j1 + j2)  # drawn once, under rk4
+        self.assertIn("rkmk4: p = 0.50 ± 0.01 (rounding)", j2)
+        self.assertIn("euler: domain at t = 12", j1)
+        fits = [line for line in axes[3].get_lines() if line.get_label() == "_fit"]
+        self.assertTrue(np.allclose(fits[0].get_ydata(), 1e-12 * fits[0].get_xdata() ** 2, rtol=1e-12))
+
+    def test_the_summary_tables_each_integral_of_each_run(self):
+        rows = md.parse_table(self.markdown, horizon.INVARIANT_HEADING)
+        self.assertEqual(len(rows), 8)
+        by = {(r[1], r[2]): r for r in rows}
+        self.assertEqual(by[("rk4", "routh-paraboloid.J2")][3], "2.00 ± 0.01")
+        self.assertEqual(by[("rk4", "routh-paraboloid.J2")][4], "1.95 → 2.05")
+        end = 1e-8 * T[-1]
+        self.assertAlmostEqual(md.as_number(by[("rk4", "routh-paraboloid.J1")][5]), end, delta=end * 1e-2)
+        self.assertEqual(by[("rkmk4", "routh-paraboloid.J1")][3], "0.50 ± 0.01 (rounding)")
+        self.assertEqual(by[("euler", "routh-paraboloid.J1")][3], "—")
+        self.assertEqual(by[("cf4", "routh-paraboloid.J2")][6], "rk4")
+        self.assertEqual(by[("rk4", "routh-paraboloid.J2")][6], "—")
+        # the main table is still one row a run
+        self.assertEqual(len(md.parse_table(self.markdown, horizon.HEADING)), 4)
+
+    def test_findings_state_each_integral(self):
+        line = next(x for x in self.markdown.splitlines() if x.startswith("- Long horizon on paraboloid "))
+        self.assertIn("routh-paraboloid.J1 error ∝ tᵖ with p = 1.00 (rk4 = cf4)", line)
+        self.assertIn("routh-paraboloid.J2 error ∝ tᵖ with p = 2.00 (rk4 = cf4)", line)
+        self.assertIn("routh-paraboloid.J1 at rounding for rkmk4", line)
 
 
 if __name__ == "__main__":

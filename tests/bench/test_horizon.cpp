@@ -150,6 +150,72 @@ TEST(Horizon, TheSeriesIsTheEnvelopeOverEachWindowNotARunningMaximum) {
   EXPECT_TRUE(falls) << "an envelope of an oscillating error falls somewhere; a running maximum never does";
 }
 
+TEST(Horizon, EachInvariantOfTheSceneIsRecordedLikeTheEnergy) {
+  // Routh's two integrals on the paraboloid: the envelope of InvariantMeter's
+  // errors over each window, every step measured, and a fit of each
+  const Problem problem = make_problem(load_scene("paraboloid"));
+  HorizonSpec spec = small_study(4000);
+  spec.dense_outputs = spec.steps;
+  const Integrator& rk4 = find_integrator("rk4");
+  const HorizonRecord r = horizon_run(problem, rk4, spec);
+  ASSERT_EQ(r.status, Status::ok) << r.message;
+  ASSERT_EQ(r.invariants.size(), 2u);
+  EXPECT_EQ(r.invariants[0].name, "routh-paraboloid.J1");
+  EXPECT_EQ(r.invariants[1].name, "routh-paraboloid.J2");
+  RunOptions every;
+  every.t_end = r.t_end;
+  every.h = spec.h;
+  for (long n = 1; n < spec.steps; ++n) every.output_times.push_back(spec.h * n);
+  const RunResult run = rk4.integrate(problem, every);
+  const InvariantMeter meter(problem);
+  const std::vector<long> samples = horizon_sample_steps(spec.steps, spec.samples_per_decade);
+  for (const InvariantSeries& s : r.invariants) {
+    ASSERT_EQ(s.error.size(), samples.size());
+    EXPECT_TRUE(std::isfinite(s.fit.p)) << s.name << ": " << s.fit.why_none;
+    EXPECT_EQ(s.fit.asymptotic, std::abs(s.fit.p_late - s.fit.p_early) <= spec.asymptotic_spread);
+    EXPECT_DOUBLE_EQ(s.fit.rounding_level, rounding_level(spec.steps, 1.0));
+    // rk4 at h = 1/128 misses them by far more than rounding
+    EXPECT_FALSE(s.fit.at_rounding) << s.name;
+  }
+  for (std::size_t k = 0; k < samples.size(); ++k)
+    for (std::size_t i = 0; i < 2; ++i) {
+      double largest = 0.0;
+      for (long n = k == 0 ? 1 : samples[k - 1] + 1; n <= samples[k]; ++n)
+        largest = std::max(largest, meter.errors(run.output.y[n - 1])[i]);
+      EXPECT_DOUBLE_EQ(r.invariants[i].error[k], largest) << "sample " << k;
+    }
+  // the report: one entry per integral beside the energy, none for a scene without
+  HorizonResults results;
+  results.runs = {r, horizon_run(make_problem(load_scene("bumpy-long")), rk4, small_study(1000))};
+  const nlohmann::json runs = horizon_json(results)["runs"];
+  const nlohmann::json& inv = runs[0].at("invariants");
+  ASSERT_EQ(inv.size(), 2u);
+  EXPECT_EQ(inv[1].at("name"), "routh-paraboloid.J2");
+  EXPECT_EQ(inv[1].at("error").size(), runs[0].at("t").size());
+  EXPECT_DOUBLE_EQ(inv[1].at("fit").at("p").get<double>(), r.invariants[1].fit.p);
+  for (const char* key : {"p_early", "p_late", "asymptotic", "at_rounding", "rounding_level", "why_none"})
+    EXPECT_TRUE(inv[0].at("fit").contains(key)) << key;
+  EXPECT_TRUE(runs[1].at("invariants").empty());
+}
+
+TEST(Horizon, TheChaplyginIntegralsShowRLeavingTheGroup) {
+  // on the plane v is kept exactly by every method; M . M = |R^T v|^2
+  // moves only with R's drift: a flat rk4's grows, rkmk4's stays at rounding
+  const Problem problem = make_problem(load_scene("chaplygin-plane"));
+  const HorizonSpec spec = small_study(20000);
+  const HorizonRecord flat = horizon_run(problem, find_integrator("rk4"), spec);
+  const HorizonRecord lie = horizon_run(problem, find_integrator("rkmk4"), spec);
+  ASSERT_EQ(flat.status, Status::ok) << flat.message;
+  ASSERT_EQ(lie.status, Status::ok) << lie.message;
+  ASSERT_EQ(flat.invariants.size(), 2u);
+  EXPECT_EQ(flat.invariants[0].name, "chaplygin-plane.K.K");
+  EXPECT_FALSE(flat.invariants[0].fit.at_rounding);
+  EXPECT_GT(flat.invariants[0].fit.largest, 1e-8);
+  EXPECT_GT(flat.invariants[0].fit.p, 0.8);
+  EXPECT_TRUE(lie.invariants[0].fit.at_rounding) << lie.invariants[0].fit.largest;
+  EXPECT_TRUE(lie.invariants[1].fit.at_rounding) << lie.invariants[1].fit.largest;
+}
+
 TEST(Horizon, TheFitSaysWhetherItsHalvesAgree) {
   // t^0.3 up to t = 1000, t^1 after: over [100, 10^4] the halves differ
   std::vector<double> t, err;
@@ -190,6 +256,23 @@ TEST(Horizon, SeriesTheSameByConstructionAreMarkedOnce) {
     // rk4's R drifts, the others' stays at rounding: never "the same" at rounding
     EXPECT_TRUE(r["same_as"]["rotation_defect"].is_null()) << name << " on " << scene;
   }
+  // a homogeneous ball's first integrals depend on (v, alpha) alone: on the
+  // paraboloid the same four are twins in Routh's J1 and J2 as well
+  spec.scenes = {"paraboloid"};
+  sweep.horizon = spec;
+  const nlohmann::json para = horizon_json(run_horizon(sweep, [](const std::string&) {}))["runs"];
+  ASSERT_EQ(para.size(), 6u);
+  for (const nlohmann::json& r : para) {
+    const std::string name = r["integrator"];
+    const nlohmann::json& same = r["same_as"]["invariants"];
+    ASSERT_EQ(same.size(), 2u) << name;
+    for (const char* integral : {"routh-paraboloid.J1", "routh-paraboloid.J2"}) {
+      if (name == "rkmk4" || name == "cf4" || name == "rk4-projected")
+        EXPECT_EQ(same[integral], "rk4") << name << " " << integral;
+      else EXPECT_TRUE(same[integral].is_null()) << name << " " << integral << ": " << same[integral];
+    }
+  }
+  EXPECT_TRUE(runs[0]["same_as"]["invariants"].empty());  // bumpy-long declares none
   // a series moved by more than its rounding level is another series
   nlohmann::json pair = nlohmann::json::array({runs[0], runs[1]});
   pair[1]["energy_error"][pair[1]["energy_error"].size() - 1] =

@@ -46,10 +46,24 @@ void expect_key(const json& scene, const std::string& key, int column = 0) {
 }
 
 TEST(SceneShipped, EveryShippedSceneLoadsAndStartsValid) {
-  const std::vector<std::string> expected = {
-      "bowl-3d",         "bowl-planar",      "bumpy-long",     "chaplygin-bowl", "chaplygin-bumpy-long",
-      "chaplygin-plane", "chaplygin-valley", "gaussian-hills", "incline-spin",   "plane",
-      "saddle",          "valley-rest",      "valley-sideways"};
+  const std::vector<std::string> expected = {"bowl-3d",
+                                             "bowl-planar",
+                                             "bumpy-long",
+                                             "chaplygin-bowl",
+                                             "chaplygin-bumpy-long",
+                                             "chaplygin-plane",
+                                             "chaplygin-valley",
+                                             "gaussian-hills",
+                                             "gaussian-hills-chaplygin",
+                                             "incline-spin",
+                                             "paraboloid",
+                                             "paraboloid-chaplygin",
+                                             "paraboloid-perturbed",
+                                             "paraboloid-perturbed-chaplygin",
+                                             "plane",
+                                             "saddle",
+                                             "valley-rest",
+                                             "valley-sideways"};
   const std::vector<std::string> names = shipped_scene_names();
   EXPECT_EQ(names, expected);
   for (const std::string& name : names) {
