@@ -1,7 +1,7 @@
 """The first screen's answer: does keeping R on SO(3) pay, where, and by how
 much. Two or three sentences and one number per scene where R feeds back,
 from the cells the findings count (findings.aggregate_cells: each Lie
-method once against its cheapest same-tableau flat method, per target; no
+method once against its cheapest geometry twin, per target; no
 bounds, no exact scenes). answer.png (figures_answer.py) draws the same
 numbers."""
 import math

@@ -249,6 +249,27 @@ class Aggregates(unittest.TestCase):
         self.assertIn("rk4-slow-variant / rkmk4 (variant)", [r[2] for r in rows])
         self.assertIn("rk4 / rkmk4", [r[2] for r in rows])
 
+    def test_a_cheaper_library_method_with_the_tableau_is_a_variant_not_the_pair(self):
+        # odeint's dopri5 beside rkmk-dp54-adaptive: the same tableau, but its own norm and controller; the
+        # counted pair is the suite's own flat twin even where the library's method is cheaper
+        report = copy.deepcopy(self.report)
+        library = as_pair(report, "rk4", "rk4", False, "odeint")
+        for r in library:
+            r["integrator"] = "odeint-rk4-fast"
+            r["wall_s"] = {k: (v / 3 if isinstance(v, float) else [x / 3 for x in v] if isinstance(v, list) else v)
+                           for k, v in r["wall_s"].items()}
+        report["runs"] += library
+        _, count = self.answer(report)
+        self.assertEqual(count, self.expected_count(self.report, True))
+        rows = md.parse_table("\n".join(findings.findings_section(report)), "### Same tableau: flat / Lie time ratio")
+        self.assertIn("odeint-rk4-fast / rkmk4 (variant)", [r[2] for r in rows])
+        self.assertIn("rk4 / rkmk4", [r[2] for r in rows])
+        # with no twin of its own (only the library's method shares the tableau), the library's method is the pair
+        alone = copy.deepcopy(report)
+        alone["runs"] = [r for r in alone["runs"] if r["integrator"] != "rk4"]
+        rows = md.parse_table("\n".join(findings.findings_section(alone)), "### Same tableau: flat / Lie time ratio")
+        self.assertIn("odeint-rk4-fast / rkmk4", [r[2] for r in rows])
+
     def test_an_exact_method_is_named_and_left_out(self):
         report = copy.deepcopy(self.report)
         for r in report["runs"]:
