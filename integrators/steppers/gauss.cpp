@@ -69,18 +69,7 @@ struct GaussStep {
         for (int j = 0; j < s; ++j) res.segment<n>(i * n) -= (h * tableau.a[i * s + j]) * K[j];
       }
     };
-    // the exact Newton matrix at the iterate: stage j's Jacobian in block column j
-    auto refresh = [&](const Eigen::VectorXd& Z) {
-      M.setIdentity();
-      for (int j = 0; j < s; ++j) {
-        const FlatState Y = y + Z.segment<n>(j * n);
-        flat_jacobian(problem, Y, J);
-        ++cost.jacobian_evals;
-        for (int i = 0; i < s; ++i) M.block<n, n>(i * n, j * n) -= (h * tableau.a[i * s + j]) * J;
-      }
-      lu.compute(M);
-    };
-    newton_solve(lu, scale, X, r, dX, residual, refresh, t, h, cost);
+    newton_solve(lu, scale, X, r, dX, residual, t, h, cost);
     next = y;
     for (int i = 0; i < s; ++i) next += d[i] * X.segment<n>(i * n);
   }

@@ -78,19 +78,7 @@ void LieMidpointStep::operator()(const FlatState& y, FlatState& next, double t, 
     res.head<3>() = UW.head<3>() - (0.5 * h) * omega;
     res.tail<kZSize>() = UW.tail<kZSize>() - (0.5 * h) * G;
   };
-  // the Newton matrix at the iterate's midpoint (exact up to dexp_U, which
-  // only slows the contraction by O(|U|))
-  auto refresh = [&](const Eigen::VectorXd& UW) {
-    const Mat3 Rm = so3_exp(UW.head<3>()) * Rn;
-    const ZState zm = z + UW.tail<kZSize>();
-    FlatState ym = make_flat(Rm, zm.head<3>(), zm.tail<2>()), fm;
-    flat_jacobian(problem, ym, J, &fm);
-    ++cost.jacobian_evals;
-    ++cost.exp_evals;
-    M = Eigen::MatrixXd::Identity(kLieSize, kLieSize) - (0.5 * h) * lie_jacobian(J, fm, Rm);
-    lu.compute(M);
-  };
-  newton_solve(lu, scale, X, r, dX, residual, refresh, t, h, cost);
+  newton_solve(lu, scale, X, r, dX, residual, t, h, cost);
   set_rotation(next, so3_exp(2.0 * Vec3(X.head<3>())) * Rn);
   next.tail<kZSize>() = z + 2.0 * X.tail<kZSize>();
   ++cost.exp_evals;

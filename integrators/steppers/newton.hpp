@@ -3,8 +3,7 @@
 // lie-gauss2*; docs/model.md, "Symmetric implicit methods"): the stage
 // equations X = h Phi(X) are solved with one matrix M = I - h (A x J) per
 // step, J the exact Jacobian at the step's start (problems/jacobian.hpp, by
-// automatic differentiation), factored once and reused by every iteration
-// while it contracts fast; where it does not, M is rebuilt at the iterate.
+// automatic differentiation), factored once and reused by every iteration.
 // An iteration that does not converge is a run status (error) with the
 // numbers, never a crash: the driver turns the StepFailure into the stop.
 #include <Eigen/Dense>
@@ -28,11 +27,6 @@ inline constexpr double kNewtonTol = 1e-14;
 // kNewtonTol: an iteration that has come below this and stops shrinking
 // (it is at rounding) has converged as well.
 inline constexpr double kNewtonStall = 1e-11;
-// An iteration whose increment shrinks by less than this factor (the
-// Jacobian of the step's start is too far from the stages': a fast-spinning
-// ball over a large step) refreshes the Newton matrix at the current
-// iterate, a full Newton step from then on while it stays slow.
-inline constexpr double kNewtonSlow = 0.25;
 // A solve that has not converged after this many iterations fails (a
 // contracting simplified Newton needs 3 to 10 at the steps a benchmark
 // takes).
@@ -48,12 +42,9 @@ inline constexpr int kNewtonMaxIterations = 40;
 // diverged when the increment is not finite, error when it has not come below kNewtonTol
 // (or stalled below kNewtonStall) after kNewtonMaxIterations, counting the
 // failure.
-// refresh(X) rebuilds and refactors lu at the iterate X (counting its
-// Jacobian) where an increment shrank by less than kNewtonSlow.
-template <class Residual, class Refresh>
+template <class Residual>
 void newton_solve(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu, const Eigen::VectorXd& scale, Eigen::VectorXd& X,
-                  Eigen::VectorXd& r, Eigen::VectorXd& dX, Residual&& residual, Refresh&& refresh, double t, double h,
-                  Cost& cost) {
+                  Eigen::VectorXd& r, Eigen::VectorXd& dX, Residual&& residual, double t, double h, Cost& cost) {
   double norm = 0.0, before = 0.0;
   for (int iteration = 1; iteration <= kNewtonMaxIterations; ++iteration) {
     residual(X, r, iteration == 1);
@@ -65,7 +56,6 @@ void newton_solve(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu, const Eigen::V
     if (!std::isfinite(norm)) break;
     if (iteration >= 2 && norm <= kNewtonTol) return;
     if (iteration >= 3 && norm <= kNewtonStall && norm >= before) return;  // at rounding
-    if (iteration >= 2 && norm > kNewtonSlow * before) refresh(X);
   }
   ++cost.newton_failures;
   char text[256];

@@ -171,21 +171,24 @@ TEST(SymmetricMethods, NewtonCostIsCounted) {
 }
 
 TEST(SymmetricMethods, ANewtonThatDoesNotConvergeIsARunStatus) {
-  // chaplygin-valley at steps that do not resolve its spin (rk4 misses the
-  // reversibility there by radii): the Newton of gauss2 at h = 1/16 blows
-  // up at t = 2.5, lie-gauss2's at h = 1/8 stalls at 4e-11 at t = 2.875;
-  // the run stops there with the numbers, the state before kept, the
-  // failure counted
+  // chaplygin-valley spins fast: over a step of 1/16 or 1/8 the Jacobian of
+  // the start is too far from the stages' for the simplified Newton to
+  // contract to its tolerance in 40 iterations (at these steps rk4 misses
+  // the reversibility by radii); the run stops there with the numbers, the
+  // state before kept, the failure counted
   const Problem& p = testing::shipped_scene("chaplygin-valley");
   struct Case {
     const char* name;
     double h, t;
     const char* message;
   };
-  for (const Case c : {Case{"gauss2", 0.0625, 2.5, "Newton did not converge at t = 2.5, h = 0.0625: the increment is "},
-                       Case{"lie-gauss2", 0.125, 2.875,
-                            "Newton did not converge at t = 2.875, h = 0.125: the increment is 4.47e-11 after 40 "
-                            "iterations (tolerance 1e-14)"}}) {
+  for (const Case c :
+       {Case{"gauss2", 0.0625, 1.25,
+             "Newton did not converge at t = 1.25, h = 0.0625: the increment is 2.23e-13 after 40 iterations "
+             "(tolerance 1e-14)"},
+        Case{"lie-gauss2", 0.125, 2.5,
+             "Newton did not converge at t = 2.5, h = 0.125: the increment is 1.31e-12 after 40 iterations "
+             "(tolerance 1e-14)"}}) {
     SCOPED_TRACE(c.name);
     const RunResult r = find_integrator(c.name).integrate(p, testing::every(0.125, 5.0, c.h));
     EXPECT_EQ(r.status, Status::error);
@@ -197,26 +200,6 @@ TEST(SymmetricMethods, ANewtonThatDoesNotConvergeIsARunStatus) {
     ASSERT_FALSE(r.output.t.empty());
     EXPECT_LE(r.output.t.back(), c.t);
     EXPECT_GT(r.output.t.back(), c.t - 0.125 - 1e-12);
-  }
-}
-
-TEST(SymmetricMethods, ASlowIterationRefreshesItsJacobianAndConverges) {
-  // chaplygin-valley spins fast: over a step of 1/16 the Jacobian of the
-  // start is too far from the stages' for a fast contraction (with it alone
-  // gauss2 stalled at an increment of 2e-13 after 40 iterations at t =
-  // 1.25); the Newton matrix is rebuilt at the iterate, so every solve to
-  // t = 2 converges (gauss2 with more Jacobians than solves; further on, these
-  // steps no longer resolve the motion: ANewtonThatDoesNotConvergeIsARunStatus)
-  const Problem& p = testing::shipped_scene("chaplygin-valley");
-  for (const char* name : {"gauss2", "gauss4", "lie-gauss2", "lie-gauss2-tj4"}) {
-    SCOPED_TRACE(name);
-    const RunResult r = find_integrator(name).integrate(p, testing::fixed(0.0625, 2.0));
-    ASSERT_EQ(r.status, Status::ok) << r.message;
-    const long solves = r.cost.steps * (std::string(name) == "lie-gauss2-tj4" ? 3 : 1);
-    EXPECT_GE(r.cost.jacobian_evals, solves);
-    if (std::string(name) == "gauss2") EXPECT_GT(r.cost.jacobian_evals, solves);  // the one that stalled
-    EXPECT_LE(r.cost.newton_iterations, 20 * solves);
-    EXPECT_EQ(r.cost.newton_failures, 0);
   }
 }
 
