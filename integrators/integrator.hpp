@@ -55,6 +55,10 @@ struct MethodInfo {
   // tableau and adaptivity, flat against Lie); empty: the method has no pair.
   std::string tableau{};
   bool on_group = false;  // R stays on SO(3) by construction (a Lie-group method)
+  // The tolerance of the suite's own Newton solve of an implicit method
+  // (integrators/steppers/newton.hpp): the scaled max norm of the last
+  // increment; 0: the method solves nothing.
+  double newton_tol = 0.0;
 };
 
 // Where the stages of the step being taken went beyond the model's limits
@@ -77,6 +81,12 @@ struct Cost {
   long jacobian_evals = 0;  // evaluations of the 14x14 Jacobian of F
   long exp_evals = 0;       // so(3) exponentials (Lie-group methods)
   long dexpinv_evals = 0;   // dexpinv applications (Lie-group methods)
+  // the suite's implicit methods (integrators/steppers/newton.hpp): Newton
+  // iterations (one linear solve each; the stages they evaluate are in
+  // rhs_evals, the Jacobians in jacobian_evals) and the solves that did not
+  // converge (each ends its run with status error)
+  long newton_iterations = 0;
+  long newton_failures = 0;
   // evaluations whose validity margins were tested against the model's
   // limits (lift-off, curvature): every stage of every step (accepted or
   // rejected), plus the explicit checks of the start, the end and a stop

@@ -20,6 +20,7 @@
 #include "integrators/steppers/baselines.hpp"
 #include "integrators/steppers/exp_product.hpp"
 #include "integrators/steppers/explicit_midpoint.hpp"
+#include "integrators/steppers/gauss.hpp"
 #include "integrators/steppers/gsl.hpp"
 #include "integrators/steppers/odeint.hpp"
 #include "integrators/steppers/tableau_methods.hpp"
@@ -95,6 +96,13 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   add(exp_product_method(m::cg3_pair(), "cg3-adaptive", pi));
   add(exp_product_method(m::cf4_pair(), "cf4-adaptive", pi));
   add(rkmk_cayley_method(m::rk4(), "rkmk4-cayley", constant));
+
+  // symmetric implicit methods, solved by the suite's simplified Newton
+  // (integrators/steppers/gauss.hpp): flat Gauss collocation, and the
+  // implicit midpoint rule composed to orders 4 and 6, flat and on the group
+  for (const int stages : {1, 2, 3}) add(gauss_method(stages));
+  for (const int order : {4, 6}) add(midpoint_composition(order, false));
+  for (const int order : {2, 4, 6}) add(midpoint_composition(order, true));
   // --- end commutator-free and Crouch-Grossman ---
 
   // --- odeint --- (Boost.Odeint steppers on the flat view)

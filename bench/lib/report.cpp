@@ -143,6 +143,22 @@ json error_components_json() {
   return list;
 }
 
+namespace {
+
+// A fixed-step run's reversibility defect: its distances back at the start,
+// or the status and message of a leg back that failed.
+json reversibility_json(const ReversibilityDefect& d) {
+  if (d.status != Status::ok)
+    return {{"status", std::string(status_name(d.status))}, {"message", valid_utf8(d.message)}};
+  return {{"status", "ok"},
+          {"contact", number(d.contact)},
+          {"rotation", number(d.rotation)},
+          {"momentum", number(d.momentum)},
+          {"worst", number(d.worst())}};
+}
+
+}  // namespace
+
 json run_json(const RunRecord& r, const std::string& reference_kind) {
   std::vector<double> samples = r.wall_samples;
   const Mat3 R = rotation_of(r.final_state);
@@ -172,6 +188,10 @@ json run_json(const RunRecord& r, const std::string& reference_kind) {
       {"exp_evals", r.cost.exp_evals},
       {"dexpinv_evals", r.cost.dexpinv_evals},
       {"validity_checks", r.cost.validity_checks},
+      {"newton",
+       m.newton_tol > 0.0
+           ? json{{"tol", m.newton_tol}, {"iterations", r.cost.newton_iterations}, {"failures", r.cost.newton_failures}}
+           : json(nullptr)},
       {"wall_s",
        {{"median", number(median(samples))},
         {"min", number(samples.empty() ? kNaN : *std::min_element(samples.begin(), samples.end()))},
@@ -184,6 +204,7 @@ json run_json(const RunRecord& r, const std::string& reference_kind) {
       {"error_max_run", {{"same_steps", r.error_max_source.same_steps}, {"steps", r.error_max_source.steps}}},
       {"error_grid", r.has_error_grid ? errors_json(r.error_grid, reference_kind) : json(nullptr)},
       {"scd", number(r.error.scd)},
+      {"reversibility", r.reversibility ? reversibility_json(*r.reversibility) : json(nullptr)},
       {"drift", {{"energy", number(r.energy_drift)}, {"rotation_defect", number(r.rotation_drift)}}},
       {"final",
        {{"t", r.stop_time},

@@ -18,12 +18,20 @@ ReversibilityDefect reversibility_defect(const Integrator& method, const Problem
   ReversibilityDefect d;
   options.output_times.clear();
   const RunResult forward = method.integrate(problem, options);
-  d.steps = forward.cost.steps;
   if (forward.status != Status::ok) {
+    d.steps = forward.cost.steps;
     d.status = forward.status;
     d.message = "forward: " + forward.message;
     return d;
   }
+  return reversibility_after(method, problem, options, forward);
+}
+
+ReversibilityDefect reversibility_after(const Integrator& method, const Problem& problem, RunOptions options,
+                                        const RunResult& forward) {
+  ReversibilityDefect d;
+  options.output_times.clear();
+  d.steps = forward.cost.steps;
   // the same scene started from the reversed end state
   const Problem back_problem(problem.name(), problem.model(), time_reversed(forward.final_state), problem.t_end(),
                              problem.domain());

@@ -29,4 +29,9 @@ struct ReversibilityDefect {
 // runs again from there, reverses, and measures the distance to the start.
 ReversibilityDefect reversibility_defect(const Integrator& method, const Problem& problem, RunOptions options);
 
+// The same from a forward run already made with options (the sweep's timed
+// run): only the leg back is run. forward must have status ok.
+ReversibilityDefect reversibility_after(const Integrator& method, const Problem& problem, RunOptions options,
+                                        const RunResult& forward);
+
 }  // namespace rb

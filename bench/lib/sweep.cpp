@@ -277,6 +277,7 @@ RunRecord run_task(const SweepScene& s, const SweepTask& task, long max_steps) {
   r.final_point = reference_point_of(s.problem, run.final_state);
   r.final_energy = s.problem.model().derived(run.final_state).energy;
   measure_end(s, run, r);
+  if (!m.adaptive() && run.status == Status::ok) r.reversibility = reversibility_after(m, s.problem, timed, run);
   const RunOptions grid = options_of(s, task, max_steps, s.times);
   if (was_lost(run.status)) return r;  // its state is lost: nothing to measure, and no second crash or wait
   if (grid.output_times == timed.output_times) {
@@ -313,6 +314,7 @@ RunRecord run_task(const SweepScene& s, const SweepTask& task, long max_steps) {
       r.final_energy = s.problem.model().derived(on_grid.final_state).energy;
       r.error = RunErrors{};
       r.error.floor = s.reference.error;
+      r.reversibility.reset();
     }
   }
   return r;

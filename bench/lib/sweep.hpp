@@ -6,12 +6,14 @@
 #include <array>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bench/lib/error_components.hpp"
 #include "bench/lib/presets.hpp"
 #include "bench/lib/reference.hpp"
+#include "bench/lib/reversibility.hpp"
 #include "integrators/integrator.hpp"
 #include "problems/scene.hpp"
 
@@ -84,6 +86,10 @@ struct RunRecord {
   FlatState final_state = FlatState::Zero();
   ReferencePoint final_point{};  // final_state in the error components
   double final_energy = kNaN;
+  // a fixed-step run that reached t_end: its reversibility defect, the timed
+  // run's end with v -> -v run back over [0, t_end] (docs/model.md, "Time
+  // reversal"); none for adaptive and failed runs
+  std::optional<ReversibilityDefect> reversibility;
 };
 
 // Loads the scenes of a spec (applying its t_end) and, unless told not to,

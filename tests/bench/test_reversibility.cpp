@@ -4,7 +4,10 @@
 // tolerance, explicit ones miss it by O(h^p).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
 
 #include "bench/lib/reversibility.hpp"
 #include "integrators/registry.hpp"
@@ -104,6 +107,56 @@ TEST(ReversibilityCli, PrintsEachMethodsDefectAndRefusesMissingSettings) {
             "rollbench: 'tol': 'rkmk-dp54-adaptive' is adaptive: give --tol\n");
   EXPECT_EQ(fail("plane --integrators rk4 --h -1").code, 2);
   EXPECT_EQ(fail("plane --integrators rk4 --h -1").err, "rollbench: 'h': the step must be a finite number > 0\n");
+}
+
+}  // namespace
+}  // namespace rb
+
+namespace rb {
+namespace {
+
+// A sweep records every fixed-step run's defect beside its error, and the
+// Newton of the suite's implicit methods; adaptive runs and explicit
+// methods have neither (docs/formats.md, "A run").
+TEST(ReversibilityCli, ASweepRecordsEachFixedStepRunsDefectAndTheNewton) {
+  const std::string out = robustness::temp_path("reversibility-sweep.json").string();
+  const robustness::CliOutcome ran = robustness::rollbench(
+      "run --scenes valley-sideways --integrators gauss2,lie-gauss2-tj4,rk4,rkmk-dp54-adaptive --h 2^-4..2^-5 "
+      "--tol 1e-6 --repeats 1 --jobs 1 --no-stability --no-horizon --no-finer-steps --out " +
+      out);
+  ASSERT_EQ(ran.code, 0) << ran.err;
+  const nlohmann::json report = nlohmann::json::parse(robustness::slurp(out));
+  int fixed = 0;
+  for (const nlohmann::json& run : report["runs"]) {
+    const std::string name = run["integrator"];
+    SCOPED_TRACE(name + " at h = " + run["h"].dump());
+    ASSERT_EQ(run["status"], "ok");
+    if (name == "rkmk-dp54-adaptive") {
+      EXPECT_TRUE(run["reversibility"].is_null());
+      EXPECT_TRUE(run["newton"].is_null());
+      continue;
+    }
+    ++fixed;
+    const nlohmann::json& d = run["reversibility"];
+    ASSERT_EQ(d["status"], "ok");
+    EXPECT_EQ(d["worst"].get<double>(),
+              std::max({d["contact"].get<double>(), d["rotation"].get<double>(), d["momentum"].get<double>()}));
+    if (name == "rk4") {
+      EXPECT_GT(d["worst"].get<double>(), 1e-8);
+      EXPECT_TRUE(run["newton"].is_null());
+      EXPECT_EQ(run["jacobian_evals"], 0);
+    } else {
+      EXPECT_LT(d["worst"].get<double>(), 1e-12);
+      EXPECT_EQ(run["newton"]["tol"], 1e-14);
+      EXPECT_EQ(run["newton"]["failures"], 0);
+      // one Jacobian a solve, at least two iterations a solve
+      const long solves = run["jacobian_evals"].get<long>();
+      EXPECT_EQ(solves, run["steps"].get<long>() * (name == "gauss2" ? 1 : 3));
+      EXPECT_GE(run["newton"]["iterations"].get<long>(), 2 * solves);
+    }
+  }
+  EXPECT_EQ(fixed, 6);
+  std::remove(out.c_str());
 }
 
 }  // namespace
