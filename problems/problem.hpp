@@ -81,15 +81,20 @@ class Problem {
     model_.flat_rhs(y, dy);
   }
   // The same, also giving the validity margins at y (no extra work but a
-  // few products: the quantities come from the evaluation itself).
-  void flat_rhs(const double* y, double* dy, ModelMargins& margins) const { model_.flat_rhs(y, dy, margins); }
+  // few products: the quantities come from the evaluation itself). Always
+  // inlined, as the model's own, so that a stage loop keeps the evaluation
+  // in registers (out of line: 23 instructions a call more, callgrind).
+  [[gnu::always_inline]] void flat_rhs(const double* y, double* dy, ModelMargins& margins) const {
+    model_.flat_rhs(y, dy, margins);
+  }
   // The Lie-group view at orientation R: omega(R, z) and G(R, z), z and dz
   // 5 numbers, omega 3. R matters only where model().anisotropic().
   template <class T>
   void lie_rhs(const Mat3& R, const T* z, T* omega, T* dz) const {
     model_.lie_rhs(R, z, omega, dz);
   }
-  void lie_rhs(const Mat3& R, const double* z, double* omega, double* dz, ModelMargins& margins) const {
+  [[gnu::always_inline]] void lie_rhs(const Mat3& R, const double* z, double* omega, double* dz,
+                                      ModelMargins& margins) const {
     model_.lie_rhs(R, z, omega, dz, margins);
   }
 

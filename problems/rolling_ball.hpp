@@ -225,8 +225,10 @@ class RollingBall {
   // omega = T^-1 v for the anisotropic ball by Sherman-Morrison (docs/model.md):
   // in the body frame, with d = 1 / (Theta + m r^2), n = R^T N, b = R^T v,
   // omega = R (d b + m r^2 (d n . b) / (1 - m r^2 n . d n) d n).
+  // Inlined into kinematics (out of line it took 114 instructions a call,
+  // N, v and w passed through memory).
   template <class T, class Rot>
-  void anisotropic_omega(const Rot& R, const T (&N)[3], const T* v, T (&w)[3]) const;
+  [[gnu::always_inline]] void anisotropic_omega(const Rot& R, const T (&N)[3], const T* v, T (&w)[3]) const;
 
   Landscape landscape_;
   BallParams p_;
@@ -241,9 +243,16 @@ class RollingBall {
 inline ModelMargins RollingBall::margins_of(const Kinematics<double>& k) const {
   ModelMargins m;
   // F = m c'' - m g with c'' = r (omega' x N + omega x N_dot): the omega'
-  // term is normal to N, so F . N needs no omega'
-  const Vec3 N_dot = k.N_d * k.alpha_dot;
-  m.normal_force = p_.mass * (p_.gravity * k.N.z() - p_.radius * N_dot.dot(k.omega.cross(k.N)));
+  // term is normal to N, so F . N needs no omega'. N_dot = N' alpha' and
+  // omega x N are kinematics' d and q: written as the same operations on
+  // the same scalars, GCC reuses them (with Eigen's products it formed
+  // them again); the dot's order is Eigen's, (d0 q0 + d1 q1) + d2 q2.
+  const double ax = k.alpha_dot[0], ay = k.alpha_dot[1];
+  const double d0 = k.N_d(0, 0) * ax + k.N_d(0, 1) * ay, d1 = k.N_d(1, 0) * ax + k.N_d(1, 1) * ay,
+               d2 = k.N_d(2, 0) * ax + k.N_d(2, 1) * ay;
+  const double w0 = k.omega[0], w1 = k.omega[1], w2 = k.omega[2], N0 = k.N[0], N1 = k.N[1], N2 = k.N[2];
+  const double q0 = w1 * N2 - w2 * N1, q1 = w2 * N0 - w0 * N2, q2 = w0 * N1 - w1 * N0;
+  m.normal_force = p_.mass * (p_.gravity * N2 - p_.radius * ((d0 * q0 + d1 * q1) + d2 * q2));
   m.det_E = k.det_E;
   // M = phi'^T C' with phi' = [[1, 0], [0, 1], [fx, fy]]
   m.fit_xx = k.C_d(0, 0) + k.f.fx * k.C_d(2, 0);
@@ -255,7 +264,8 @@ inline ModelMargins RollingBall::margins_of(const Kinematics<double>& k) const {
 }
 
 template <class T, class Rot>
-void RollingBall::anisotropic_omega(const Rot& R, const T (&N)[3], const T* v, T (&w)[3]) const {
+[[gnu::always_inline]] inline void RollingBall::anisotropic_omega(const Rot& R, const T (&N)[3], const T* v,
+                                                                  T (&w)[3]) const {
   const double mr2 = p_.mass * p_.radius * p_.radius;
   T dn[3], db[3];
   T ndn = T(0.0), dnb = T(0.0);

@@ -23,7 +23,8 @@ inline Mat3 hat(const Vec3& w) {
 // (about a tenth of an RKMK4 step), as well as the cancellation in 1 - cos t.
 // Written entry by entry with hat(z)^2 = z z^T - t^2 I: no 3x3 product
 // (callgrind: 160 -> 78 instructions a call), the same matrix to rounding.
-inline Mat3 so3_exp(const Vec3& z) {
+// Always inlined: the stage loops that form exp(U) R_n called it out of line.
+[[gnu::always_inline]] inline Mat3 so3_exp(const Vec3& z) {
   const double x = z.x(), y = z.y(), w = z.z();
   const double xx = x * x, yy = y * y, ww = w * w;
   const double t2 = xx + yy + ww;

@@ -5,6 +5,7 @@
 #include <dlfcn.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,16 @@
 
 namespace rb {
 namespace {
+
+// Bit for bit, but a NaN equals any NaN: the sign of a NaN made by an
+// invalid operation depends on the order GCC gives a commutative
+// operation's operands, which differs where the right-hand side is inlined
+// into different code (the library's and this test's).
+bool same_bits(const double* a, const double* b, int n) {
+  for (int i = 0; i < n; ++i)
+    if (std::isnan(a[i]) ? !std::isnan(b[i]) : std::memcmp(&a[i], &b[i], sizeof(double)) != 0) return false;
+  return true;
+}
 
 // The library's functions, looked up by name as ctypes does.
 struct ProblemLibrary {
@@ -119,7 +130,7 @@ TEST_F(ProblemAbi, RhsJacobianAndCodesAreTheSuitesBitForBit) {
       ModelMargins margins;
       const int code = lib.rhs(p, 0.5, y.data(), dy_abi.data());
       problem.flat_rhs(y.data(), dy_suite.data(), margins);
-      ASSERT_EQ(std::memcmp(dy_abi.data(), dy_suite.data(), sizeof dy_abi), 0) << "state " << i;
+      ASSERT_TRUE(same_bits(dy_abi.data(), dy_suite.data(), kFlatSize)) << "state " << i;
       const Validity v = problem.check_model(margins);
       ASSERT_EQ(code, static_cast<int>(v.status)) << "state " << i;
       EXPECT_EQ(lib.message(p), v.reason);
