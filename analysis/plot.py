@@ -9,7 +9,8 @@ Writes answer.png (flat/Lie per scene where R feeds back: the first
 screen's figure), per scene convergence-, work-precision-,
 work-precision-best-, tolerance- and drift-<scene>.png (for a regime study only with
 --scene-figures), regime-border.png and regime-<target>.png (analysis/regime.py) and
-horizon-<scene>.png per scene of the horizon study; then stability.png, scenes.png,
+horizon-<scene>.png per scene of the horizon study and horizon-cost.png
+(analysis/horizon_ladder.py); then stability.png, scenes.png,
 ball-deforms.png (with --ball), ns-per-step.png (with --perf), summary.md,
 index.html (the answer, its figure, the other figures with captions and the
 summary) and all-methods.html (the every-method work-precision charts).
@@ -29,7 +30,7 @@ if __package__ in (None, ""):
 
 from analysis import figures, figures_answer, figures_ball, figures_overview, figures_precision  # noqa: E402
 from analysis import html, landscape  # noqa: E402
-from analysis import answer, horizon, regime, style, summary  # noqa: E402
+from analysis import answer, horizon, horizon_ladder, regime, style, summary  # noqa: E402
 from analysis import report as rp  # noqa: E402
 
 DEFAULT_SCENES = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "problems", "scenes")
@@ -93,6 +94,8 @@ def build_figures(report, options=None, messages=None, log=None):
             attempt(regime.figure_name(target), lambda: regime.heat_map(report, target, metric, results))
     for scene in horizon.scenes(report):
         attempt(f"horizon-{scene}.png", lambda: horizon.figure(report, scene, palette))
+    if horizon.scenes(report):
+        attempt(horizon_ladder.COST_FIGURE, lambda: horizon_ladder.cost_figure(report, palette))
     attempt("stability.png", lambda: figures_overview.stability(report, palette))
     if per_scene:
         attempt("scenes.png", lambda: figures_overview.scenes(report, options.scene_dir, options.trajectories,

@@ -226,6 +226,13 @@ std::vector<std::string> split_names(const std::string& text) {
   return names;
 }
 
+// split_names' inverse, for help texts.
+std::string join_names(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ",") + name;
+  return text;
+}
+
 // Text from outside is made valid UTF-8 where it enters (problems/utf8.hpp);
 // the dump replaces what might still slip through, so that no report is
 // lost to a strict dump. The file replaces path only once it is whole.
@@ -474,10 +481,12 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--horizon-steps", run.horizon_steps,
                       "run the horizon study with this many fixed steps per run, e.g. 1e5 or 1e6 (the default "
                       "preset's: 1e6; full: 1e7)");
+  const rb::HorizonSpec study = rb::preset("default").horizon;
   run_cmd->add_option("--horizon-scenes", run.horizon_scenes,
-                      "the horizon study's scenes (default: bumpy-long,chaplygin-bumpy-long)");
+                      "the horizon study's scenes (default: " + join_names(study.scenes) + ")");
   run_cmd->add_option("--horizon-integrators", run.horizon_integrators,
-                      "the horizon study's fixed-step methods (comma-separated registry names)");
+                      "the horizon study's fixed-step methods, comma-separated registry names (default: " +
+                          join_names(study.integrators) + ")");
   run_cmd->add_flag("--no-horizon", run.no_horizon, "skip the horizon study of the preset");
   run_cmd->add_option("--out", run.out, "the report to write")->required();
   run_cmd->add_option("--stepper", steppers, stepper_help);

@@ -1,10 +1,14 @@
 #include "bench/lib/horizon.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <limits>
+#include <mutex>
+#include <thread>
 
 #include "bench/lib/drift.hpp"
 #include "bench/lib/integrate_safely.hpp"
@@ -19,6 +23,14 @@ namespace rb {
 using json = nlohmann::json;
 
 namespace {
+
+// This thread's CPU time: a run's price that other threads and programs on
+// the machine do not inflate as they do its wall time.
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
@@ -126,6 +138,7 @@ HorizonRecord horizon_run(const Problem& problem, const Integrator& m, const Hor
   // every output a whole number of steps, so that no step is shortened to land
   for (const long n : output_steps(samples, spec.steps, every)) o.output_times.push_back(spec.h * n);
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = thread_cpu_seconds();
   const RunResult run = integrate_safely(m, problem, o);
   r.status = run.status;
   r.message = run.message;
@@ -166,6 +179,7 @@ HorizonRecord horizon_run(const Problem& problem, const Integrator& m, const Hor
     }
   }
   r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.cpu_s = thread_cpu_seconds() - cpu_start;
   const double t_from = r.t_end * std::pow(10.0, -spec.fit_decades);
   r.energy_fit = fit_growth(r.t, r.energy_error, t_from, r.t_end, rounding_level(spec.steps, r.energy_scale));
   r.defect_fit = fit_growth(r.t, r.rotation_defect, t_from, r.t_end, rounding_level(spec.steps, 1.0));
@@ -223,26 +237,46 @@ HorizonResults run_horizon(const SweepSpec& spec, const std::function<void(const
   if (!hs.enabled) return out;
   const auto start = std::chrono::steady_clock::now();
   const std::size_t total = hs.scenes.size() * hs.integrators.size();
-  std::size_t index = 0;
-  for (const std::string& scene : hs.scenes) {
-    const Problem problem = make_problem(load_scene(scene));
-    for (const std::string& name : hs.integrators) {
-      if (static_cast<int>(index % static_cast<std::size_t>(spec.shard_count)) == spec.shard_index) {
-        HorizonRecord r = horizon_run(problem, find_integrator(name), hs);
-        r.index = index;
-        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        std::string invariants;
-        for (const InvariantSeries& s : r.invariants)
-          invariants += ", " + s.name + " p = " + fixed(s.fit.p, "%.2f") + (s.fit.at_rounding ? " (rounding)" : "");
-        progress("horizon: " + name + " on " + r.scene + ": " + std::string(status_name(r.status)) + ", energy p = " +
-                 fixed(r.energy_fit.p, "%.2f") + ", rotation defect p = " + fixed(r.defect_fit.p, "%.2f") +
-                 (r.defect_fit.at_rounding ? " (rounding)" : "") + invariants + ", " + fixed(r.wall_s, "%.2f") +
-                 " s (" + progress_line("horizon", index + 1, total, elapsed) + ")");
-        out.runs.push_back(std::move(r));
-      }
-      ++index;
-    }
-  }
+  std::vector<Problem> problems;
+  for (const std::string& scene : hs.scenes) problems.push_back(make_problem(load_scene(scene)));
+  // this shard's runs by their index in the full study, scenes outer
+  std::vector<std::size_t> mine;
+  for (std::size_t index = 0; index < total; ++index)
+    if (static_cast<int>(index % static_cast<std::size_t>(spec.shard_count)) == spec.shard_index) mine.push_back(index);
+  std::vector<HorizonRecord> records(mine.size());
+  std::mutex report_lock;
+  std::size_t done = 0;
+  const auto run_one = [&](std::size_t k) {
+    const std::size_t index = mine[k];
+    const std::string& name = hs.integrators[index % hs.integrators.size()];
+    HorizonRecord r = horizon_run(problems[index / hs.integrators.size()], find_integrator(name), hs);
+    r.index = index;
+    std::string invariants;
+    for (const InvariantSeries& s : r.invariants)
+      invariants += ", " + s.name + " p = " + fixed(s.fit.p, "%.2f") + (s.fit.at_rounding ? " (rounding)" : "");
+    const std::lock_guard<std::mutex> hold(report_lock);
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    progress("horizon: " + name + " on " + r.scene + ": " + std::string(status_name(r.status)) + ", energy p = " +
+             fixed(r.energy_fit.p, "%.2f") + ", rotation defect p = " + fixed(r.defect_fit.p, "%.2f") +
+             (r.defect_fit.at_rounding ? " (rounding)" : "") + invariants + ", " + fixed(r.cpu_s, "%.2f") + " s CPU (" +
+             progress_line("horizon", ++done, mine.size(), elapsed) + ")");
+    records[k] = std::move(r);
+  };
+  // the runs are independent and each is timed by its own thread's CPU
+  // clock, so they share --jobs threads; runs that fork (isolated plug-ins)
+  // run alone afterwards, as in the sweep (bench/lib/sweep.cpp says why)
+  std::vector<std::size_t> in_pool, forking;
+  for (std::size_t k = 0; k < mine.size(); ++k)
+    (find_integrator(hs.integrators[mine[k] % hs.integrators.size()]).forks() ? forking : in_pool).push_back(k);
+  std::atomic<std::size_t> next{0};
+  std::vector<std::thread> pool;
+  for (int j = 0; j < std::max(1, spec.jobs); ++j)
+    pool.emplace_back([&] {
+      for (std::size_t n = next++; n < in_pool.size(); n = next++) run_one(in_pool[n]);
+    });
+  for (std::thread& t : pool) t.join();
+  for (const std::size_t k : forking) run_one(k);
+  out.runs = std::move(records);
   return out;
 }
 
@@ -352,7 +386,11 @@ json horizon_json(const HorizonResults& results) {
                     {"steps", r.cost.steps},
                     {"rhs_evals", r.cost.rhs_evals},
                     {"exp_evals", r.cost.exp_evals},
+                    {"jacobian_evals", r.cost.jacobian_evals},
+                    {"newton_iterations", r.cost.newton_iterations},
+                    {"newton_failures", r.cost.newton_failures},
                     {"wall_s", r.wall_s},
+                    {"cpu_s", r.cpu_s},
                     {"energy_scale", r.energy_scale},
                     {"t", r.t},
                     {"energy_error", r.energy_error},

@@ -66,6 +66,7 @@ struct HorizonRecord {
   double stop_time = 0.0;
   Cost cost;
   double wall_s = 0.0;        // the integration and the measurement
+  double cpu_s = 0.0;         // the same, in this run's thread's CPU time (its price: runs share threads)
   double energy_scale = 0.0;  // m g0 r + the starting kinetic energy (J)
   // at the sample times: the envelope, the largest of the states measured
   // (the samples and a uniform grid of about dense_outputs states between)
@@ -117,7 +118,8 @@ void check_horizon(const HorizonSpec& spec);
 long parse_horizon_steps(const std::string& text);
 
 // This shard's runs (index % count == shard index), scenes outer, methods
-// inner; progress gets a line per run.
+// inner, in that order, computed on spec.jobs threads; progress gets a line
+// per run, as each ends.
 HorizonResults run_horizon(const SweepSpec& spec, const std::function<void(const std::string&)>& progress);
 
 // The report's "horizon" section (docs/formats.md#the-horizon-study).

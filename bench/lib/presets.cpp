@@ -29,18 +29,23 @@ std::vector<double> step_ladder(int from, int fine_to, int coarse_to) {
 }
 
 // The horizon study of the presets (docs/usage.md#the-horizon-study): the
-// bumpy bowl with a homogeneous ball and with an anisotropic one (the same
-// landscape and start, R feeding back or not), and two scenes with first
-// integrals beyond the energy (Routh's in the paraboloid, the Chaplygin
-// ball's on the plane, whose errors it records); the best fixed-step method of
-// each family at order 4 (rk4 and odeint-rk4: one tableau, two codes) and at
-// order 1 (euler, exp-euler: flat and on the group).
+// ladder of docs/model.md (a paraboloid of revolution: integrable and
+// reversible; the same slightly perturbed: reversible, not integrable;
+// gaussian hills: chaotic), each with a homogeneous and an anisotropic
+// ball; the bumpy bowl both ways; the Chaplygin ball on the plane, whose
+// first integrals it records. The methods: the best fixed-step one of each
+// explicit family at order 4 (rk4 and odeint-rk4: one tableau, two codes)
+// and at order 1 (euler, exp-euler: flat and on the group), and the
+// symmetric implicit methods of orders 2 and 4 on both views (gauss2,
+// lie-gauss2; gauss4, lie-gauss2-tj4).
 HorizonSpec horizon_study(long steps) {
   HorizonSpec h;
   h.enabled = true;
-  h.scenes = {"bumpy-long", "chaplygin-bumpy-long", "paraboloid", "chaplygin-plane"};
-  h.integrators = {"euler",         "exp-euler",      "rk4",   "odeint-rk4", "gsl-rk4",
-                   "rk4-projected", "rk4-quaternion", "rkmk4", "cf4",        "cg4a"};
+  h.scenes = {"paraboloid",     "paraboloid-chaplygin",     "paraboloid-perturbed", "paraboloid-perturbed-chaplygin",
+              "gaussian-hills", "gaussian-hills-chaplygin", "bumpy-long",           "chaplygin-bumpy-long",
+              "chaplygin-plane"};
+  h.integrators = {"euler", "exp-euler", "rk4",  "odeint-rk4", "gsl-rk4",    "rk4-projected", "rk4-quaternion",
+                   "rkmk4", "cf4",       "cg4a", "gauss2",     "lie-gauss2", "gauss4",        "lie-gauss2-tj4"};
   h.steps = steps;
   return h;
 }

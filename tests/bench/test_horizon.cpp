@@ -359,6 +359,33 @@ TEST(HorizonCli, OptionsRunTheStudyIntoTheReportAndShardsMerge) {
   }
 }
 
+// The runs share --jobs threads: every record, its index and its place in
+// the report are those of one thread's run, but for the timings; an
+// implicit method's Newton counts are recorded, an explicit one's are 0.
+TEST(HorizonCli, ThreadsGiveTheRecordsOfOneThread) {
+  const fs::path one = testing::cli_temp_file("horizon-jobs1.json"), two = testing::cli_temp_file("horizon-jobs2.json");
+  const std::string common =
+      "run --scenes plane --integrators rk4 --h 0.25 --repeats 0 --horizon-steps 2000 "
+      "--horizon-scenes plane,paraboloid-chaplygin --horizon-integrators rk4,gauss2,rkmk4 ";
+  testing::CliOutcome o = run_rollbench(common + "--jobs 1 --out " + one.string());
+  ASSERT_EQ(o.code, 0) << o.err;
+  o = run_rollbench(common + "--jobs 2 --out " + two.string());
+  ASSERT_EQ(o.code, 0) << o.err;
+  nlohmann::json a = nlohmann::json::parse(slurp(one)).at("horizon").at("runs");
+  nlohmann::json b = nlohmann::json::parse(slurp(two)).at("horizon").at("runs");
+  ASSERT_EQ(a.size(), 6u);
+  ASSERT_EQ(b.size(), 6u);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].at("index"), i);
+    EXPECT_GE(b[i].at("cpu_s").get<double>(), 0.0);
+    const bool implicit = a[i].at("integrator") == "gauss2";
+    EXPECT_EQ(a[i].at("newton_iterations").get<long>() > 0, implicit) << a[i].at("integrator");
+    EXPECT_EQ(a[i].at("jacobian_evals").get<long>() > 0, implicit) << a[i].at("integrator");
+    for (nlohmann::json* run : {&a[i], &b[i]}) run->erase("wall_s"), run->erase("cpu_s");
+    EXPECT_EQ(a[i], b[i]) << "run " << i;
+  }
+}
+
 TEST(HorizonCli, AMergeFindsTwinSeriesAcrossShards) {
   const fs::path a = testing::cli_temp_file("twins-a.json"), b = testing::cli_temp_file("twins-b.json"),
                  merged = testing::cli_temp_file("twins-merged.json");

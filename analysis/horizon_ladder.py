@@ -1,0 +1,176 @@
+"""What keeps the energy bounded over a long horizon, and at what price (docs/usage.md#the-horizon-study; the ladder
+of scenes in docs/model.md#invariants-beyond-the-energy). Per horizon scene, each method's energy error is
+"bounded" (its envelope's exponent p at most BOUNDED_P with early and late halves agreeing, or the whole window at
+rounding), "grows" (p above it) or "not yet asymptotic"; each method is "symmetric" when the sweep's
+reversibility defects of all its runs are at rounding (analysis/reversibility.py), "explicit" when they are
+not. The findings say per scene which symmetric methods keep the energy bounded, which do not, and the cheapest
+method whose relative energy error stays under ENERGY_TARGET over the whole run, with its CPU time against rk4's.
+horizon-cost.png draws it: per scene, each method's CPU seconds for the run against its largest relative energy
+error, with the ENERGY_TARGET line."""
+import math
+
+from analysis import figures, horizon, reversibility
+from analysis import markdown as md
+from analysis import report as rp
+
+# Bounded: an envelope that neither drifts (p = 1) nor random-walks (p = 1/2); halfway to the random walk.
+BOUNDED_P = 0.25
+# The relative energy error a long run must stay under (issue 34: "keep the energy error under 1e-6").
+ENERGY_TARGET = 1e-6
+BASELINE = "rk4"
+COST_FIGURE = "horizon-cost.png"
+
+
+def symmetric_methods(report):
+    """The fixed-step methods whose every measured reversibility defect in the sweep is at rounding."""
+    worst = {}
+    for scene in rp.scenes(report):
+        for name, (w, _) in reversibility.largest_defects(report, scene).items():
+            worst[name] = max(worst.get(name, 0.0), w)
+    return {n for n, w in worst.items() if w <= reversibility.AT_ROUNDING}
+
+
+def energy_class(run):
+    """'bounded', 'grows', 'not yet asymptotic', or None (a run that stopped, or no fit)."""
+    if run.get("status", "ok") != "ok":
+        return None
+    fit = horizon.fit_of(run, "energy_error")
+    if fit.get("at_rounding"):
+        return "bounded"
+    p = rp.num(fit.get("p"))
+    if not math.isfinite(p):
+        return None
+    if horizon.not_asymptotic(fit):
+        return "not yet asymptotic"
+    return "bounded" if p <= BOUNDED_P else "grows"
+
+
+def relative_energy_error(run):
+    """The largest energy error over the run relative to its energy scale; inf for a run that stopped."""
+    if run.get("status", "ok") != "ok":
+        return math.inf
+    errors = [rp.num(e) for e in run.get("energy_error") or []]
+    scale = rp.num(run.get("energy_scale"))
+    errors = [e for e in errors if math.isfinite(e)]
+    return max(errors) / scale if errors and scale > 0 else math.nan
+
+
+def cpu_seconds(run):
+    """The run's CPU time (`cpu_s`); its wall time for reports that predate it."""
+    cpu = rp.num(run.get("cpu_s"))
+    return cpu if math.isfinite(cpu) else rp.num(run.get("wall_s"))
+
+
+def _p_text(run):
+    fit = horizon.fit_of(run, "energy_error")
+    if fit.get("at_rounding"):
+        return "rounding"
+    if horizon.not_asymptotic(fit):
+        return "not yet asymptotic, " + horizon.halves_text(fit)
+    return f"p = {rp.num(fit.get('p')):.2f}"
+
+
+def _listed(runs):
+    return ", ".join(f"{r['integrator']} ({_p_text(r)})" for r in runs)
+
+
+def _range(ps):
+    return f"p = {ps[0]:.2f}" if len(ps) == 1 or ps[0] == ps[-1] else f"p {ps[0]:.2f} – {ps[-1]:.2f}"
+
+
+def _price(entries):
+    """'cheapest under 1e-6: gauss2, 8.1 s CPU (12 × rk4's 0.7 s)', or a sentence saying none stays under."""
+    under = sorted((cpu_seconds(r), r["integrator"]) for r in entries
+                   if relative_energy_error(r) <= ENERGY_TARGET and math.isfinite(cpu_seconds(r)))
+    if not under:
+        return f"no method keeps the relative energy error under {ENERGY_TARGET:.0e}"
+    cpu, name = under[0]
+    base = next((cpu_seconds(r) for r in entries if r["integrator"] == BASELINE), math.nan)
+    ratio = f" ({cpu / base:.1f} × {BASELINE}'s {md.fmt(base)} s)" if math.isfinite(base) and base > 0 else ""
+    return f"cheapest under {ENERGY_TARGET:.0e} relative energy error: {name}, {md.fmt(cpu)} s CPU{ratio}"
+
+
+def finding_lines(report):
+    """One line per horizon scene: which symmetric methods keep the energy bounded and which do not, the explicit
+    ones' growth, and the price of staying under ENERGY_TARGET; then one line naming the scenes where symmetry
+    alone kept every symmetric method's energy bounded."""
+    symmetric = symmetric_methods(report)
+    lines, held, failed = [], [], []
+    for scene in horizon.scenes(report):
+        entries = horizon.runs(report, scene)
+        classes = [(r, energy_class(r)) for r in entries]
+        sym = [(r, c) for r, c in classes if r["integrator"] in symmetric and c]
+        if not sym:
+            continue
+        by = {kind: [r for r, c in sym if c == kind] for kind in ("bounded", "grows", "not yet asymptotic")}
+        explicit = [r for r, c in classes if r["integrator"] not in symmetric and c == "grows"]
+        if by["grows"]:
+            failed.append(scene)
+        elif not by["not yet asymptotic"]:
+            held.append(scene)
+        first = entries[0]
+        parts = []
+        for kind, text in (("bounded", "energy bounded for the symmetric "), ("grows", "growing for the symmetric "),
+                           ("not yet asymptotic", "undecided for the symmetric ")):
+            if by[kind]:
+                parts.append(text + _listed(by[kind]))
+        if explicit:
+            ps = sorted(rp.num(horizon.fit_of(r, "energy_error").get("p")) for r in explicit)
+            parts.append(f"growing for {len(explicit)} other method{'s' if len(explicit) > 1 else ''} ({_range(ps)})")
+        parts.append(_price(entries))
+        lines.append(f"- Ladder, {scene} ({horizon.kind(first)}, {horizon.count_text(first.get('steps_planned'))} "
+                     f"steps): " + "; ".join(parts) + ".")
+    if horizon.scenes(report) and not symmetric:
+        lines.append("- Ladder: no method's reversibility defect was at rounding in this report's sweep (run the "
+                     "horizon study's methods in the sweep too), so no line says what symmetry keeps.")
+    if held or failed:
+        lines.append(f"- Reversibility and the energy (bounded: p ≤ {BOUNDED_P} or rounding): symmetry kept every "
+                     "symmetric method's energy bounded on " + (", ".join(held) or "no scene")
+                     + "; a symmetric method's energy grew on " + (", ".join(failed) or "no scene") + ".")
+    return lines
+
+
+def cost_figure(report, palette):
+    """horizon-cost.png: per horizon scene, CPU seconds per run against the largest relative energy error, the
+    runs that stopped at the top edge."""
+    names = horizon.scenes(report)
+    if not names:
+        raise figures.NothingToPlot("no horizon runs")
+    cols = min(3, len(names))
+    rows = math.ceil(len(names) / cols)
+    fig = figures.new_figure(5.2 * cols, 4.2 * rows)
+    axes = fig.subplots(rows, cols, squeeze=False).ravel()
+    for ax, scene in zip(axes, names):
+        entries = horizon.runs(report, scene)
+        for r in entries:
+            x, y = cpu_seconds(r), relative_energy_error(r)
+            if not (math.isfinite(x) and x > 0):
+                continue
+            stopped = not math.isfinite(y)
+            style = dict(palette.style(r["integrator"]), linestyle="none")
+            if stopped:
+                style["marker"] = "x"
+            ax.plot([x], [1.0 if stopped else max(y, 1e-17)], markersize=7,
+                    label=r["integrator"] + (" (stopped)" if stopped else ""), **style)
+        ax.axhline(ENERGY_TARGET, color="#999999", linestyle=":", linewidth=1)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        first = entries[0]
+        ax.set_title(f"{scene} ({horizon.kind(first)}), {horizon.count_text(first.get('steps_planned'))} steps",
+                     fontsize=9)
+        ax.set_xlabel("CPU s per run")
+        ax.set_ylabel("largest |H − H₀| / energy scale")
+        ax.grid(True, which="major", alpha=0.3)
+    for ax in axes[len(names):]:
+        ax.set_visible(False)
+    shown = {}
+    for ax in axes[:len(names)]:
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            shown.setdefault(label, handle)
+    legend_rows = math.ceil(len(shown) / 6)
+    fig.legend(list(shown.values()), list(shown), loc="lower center", ncol=6, fontsize=7, frameon=False)
+    # room for the x labels and the legend's rows, in inches of the figure's height
+    fig.subplots_adjust(bottom=(0.75 + 0.2 * legend_rows) / fig.get_figheight(), hspace=0.4, wspace=0.3)
+    fig.suptitle(f"The price of a bounded energy: the dotted line is {ENERGY_TARGET:.0e}; a stopped run sits at 1",
+                 fontsize=10)
+    return fig

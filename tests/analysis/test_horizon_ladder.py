@@ -1,0 +1,88 @@
+"""What keeps the energy bounded and at what price (analysis/horizon_ladder.py), on a hand-made report: a
+symmetric method (its sweep's reversibility defects at rounding) whose energy stays bounded on one scene and grows
+on another, an explicit one whose energy grows, their CPU times, and the cost figure."""
+import os
+import tempfile
+import unittest
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.image as mpimg  # noqa: E402
+import numpy as np  # noqa: E402
+
+from analysis import horizon_ladder as ladder  # noqa: E402
+from analysis import plot  # noqa: E402
+from tests.analysis import synthetic as syn  # noqa: E402
+from tests.analysis.test_horizon import horizon_run  # noqa: E402
+
+
+def sweep_run(scene, name, defect):
+    """A fixed-step sweep run with a measured reversibility defect."""
+    return {"scene": scene, "integrator": name, "adaptive": False, "h": 0.01, "status": "ok",
+            "reversibility": {"status": "ok", "worst": defect}}
+
+
+def ladder_report():
+    report = dict(syn.make_report())
+    report["runs"] = list(report["runs"]) + [sweep_run("paraboloid", "gauss2", 3e-15),
+                                             sweep_run("paraboloid", "rk4", 2e-8)]
+    runs = []
+    # gauss2: bounded and small on the paraboloid; growing to 2e-6 of the 1.2 J scale on the hills
+    for scene, gauss_law in (("paraboloid", (0.02, 1e-9)), ("gaussian-hills", (0.70, 1e-7))):
+        base = len(runs)
+        gauss = horizon_run(base, scene, "gauss2", "gauss", gauss_law, (0.5, 1e-16))
+        rk4 = horizon_run(base + 1, scene, "rk4", "rk", (1.0, 1e-7), (1.0, 1e-6))
+        euler = horizon_run(base + 2, scene, "euler", "rk", None, None, status="domain", stop=12.0)
+        gauss["cpu_s"], rk4["cpu_s"], euler["cpu_s"] = 2.5, 0.25, 0.01
+        runs += [gauss, rk4, euler]
+    report["horizon"] = {"runs": runs}
+    return report
+
+
+class Ladder(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.report = ladder_report()
+        cls.lines = ladder.finding_lines(cls.report)
+
+    def test_symmetry_is_read_from_the_measured_defects(self):
+        self.assertEqual(ladder.symmetric_methods(self.report), {"gauss2"})
+
+    def test_each_scene_says_which_symmetric_method_keeps_the_energy_and_the_price(self):
+        para = next(line for line in self.lines if line.startswith("- Ladder, paraboloid "))
+        self.assertIn("energy bounded for the symmetric gauss2 (p = 0.02)", para)
+        self.assertIn("growing for 1 other method (p = 1.00)", para)
+        # rk4's largest error 1e-7 t over t = 78 s is 6.5e-6 of the 1.2 J scale: over 1e-6; gauss2's is not
+        self.assertIn("cheapest under 1e-06 relative energy error: gauss2, 2.5 s CPU (10.0 × rk4's 0.25 s)", para)
+        hills = next(line for line in self.lines if line.startswith("- Ladder, gaussian-hills "))
+        self.assertIn("growing for the symmetric gauss2 (p = 0.70)", hills)
+        self.assertIn("no method keeps the relative energy error under 1e-06", hills)
+
+    def test_the_last_line_names_where_symmetry_kept_the_energy_and_where_not(self):
+        self.assertEqual(self.lines[-1], "- Reversibility and the energy (bounded: p ≤ 0.25 or rounding): symmetry "
+                                         "kept every symmetric method's energy bounded on paraboloid; a symmetric "
+                                         "method's energy grew on gaussian-hills.")
+
+    def test_classes_of_a_growth_fit(self):
+        runs = self.report["horizon"]["runs"]
+        self.assertEqual([ladder.energy_class(r) for r in runs[:3]], ["bounded", "grows", None])
+        self.assertEqual(ladder.relative_energy_error(runs[2]), float("inf"))
+
+    def test_without_a_measured_symmetric_method_it_says_so(self):
+        report = dict(self.report, runs=[r for r in self.report["runs"] if "reversibility" not in r])
+        self.assertEqual(len(ladder.finding_lines(report)), 1)
+        self.assertIn("no method's reversibility defect was at rounding", ladder.finding_lines(report)[0])
+
+    def test_the_cost_figure_is_drawn(self):
+        report = {"schema": self.report["schema"], "runs": [], "references": self.report["references"],
+                  "horizon": self.report["horizon"]}
+        with tempfile.TemporaryDirectory() as out:
+            written = plot.write_all(report, out, plot.Options(scene_dir=os.devnull), log=lambda _: None)
+            path = os.path.join(out, ladder.COST_FIGURE)
+            self.assertIn(path, written)
+            self.assertGreater(float(np.std(mpimg.imread(path)[..., :3])), 0.05)
+
+
+if __name__ == "__main__":
+    unittest.main()
