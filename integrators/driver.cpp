@@ -27,16 +27,18 @@ std::string model_stop_reason(const Validity& v, double t) {
   return v.reason + at;
 }
 
-std::string stage_stop_reason(const Validity& v, double t, double h) {
+std::string step_stop_reason(const Validity& v, double t, double h, InStep where) {
   char at[96];
-  std::snprintf(at, sizeof at, " at t = %.9g (at a stage of the step of h = %.3g from there)", t, h);
+  std::snprintf(at, sizeof at, " at t = %.9g (%s the step of h = %.3g from there)", t,
+                where == InStep::stage ? "at a stage of" : "between the stages of", h);
   return v.reason + at;
 }
 
-std::string path_stop_reason(const Validity& v, double t, double h) {
-  char at[96];
-  std::snprintf(at, sizeof at, " at t = %.9g (between the stages of the step of h = %.3g from there)", t, h);
-  return v.reason + at;
+Validity model_limit(const Problem& problem, const ModelMargins& m, bool non_finite) {
+  Validity v = problem.check_model(m);
+  if (v.status == Status::curvature || v.status == Status::lift_off) return v;
+  if (non_finite && v.status == Status::diverged) return v;
+  return {};
 }
 
 Tolerances tolerances_of(const RunOptions& options) {
@@ -95,9 +97,7 @@ double initial_step(const Problem& problem, const FlatState& y0, const Tolerance
 PathCheck check_step_path(const Problem& problem, const FlatState& y0, const FlatState& y1, double h, Cost& cost) {
   auto limit_of = [&](const ModelMargins& m) -> Validity {
     ++cost.validity_checks;
-    if (Problem::within_model(m)) return {};
-    Validity v = problem.check_model(m);
-    return (v.status == Status::curvature || v.status == Status::lift_off) ? v : Validity{};
+    return Problem::within_model(m) ? Validity{} : model_limit(problem, m);
   };
   FlatState f0, f1, y, f;
   ModelMargins m;

@@ -95,7 +95,7 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
         if (cost.watch.beyond) [[unlikely]] {
           if (const Validity v = book.stage_limit(true); v.status != Status::ok) {
             if (const Validity at = book.check_model_at(*y, t); at.status != Status::ok) return stop_model(at);
-            return book.stop(v.status, stage_stop_reason(v, t, h), *y, t);
+            return book.stop(v.status, step_stop_reason(v, t, h), *y, t);
           }
         }
         ++cost.steps;
@@ -120,7 +120,7 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
     if (cost.watch.beyond)
       if (const Validity v = book.stage_limit(true); v.status != Status::ok) {
         if (const Validity at = book.check_model_at(*y, t); at.status != Status::ok) return stop_model(at);
-        return book.stop(v.status, stage_stop_reason(v, t, h_step), *y, t);
+        return book.stop(v.status, step_stop_reason(v, t, h_step), *y, t);
       }
     return book.stop(e.status(), e.what(), *y, t);
   }
@@ -307,16 +307,14 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
   // its stages is checked too (check_step_path): the run is where a limit
   // is, and a step could jump the region its stages missed.
   bool check_paths = false;
-  auto refuse = [&](const Validity& limit, double h_tried, bool on_path = false) -> std::optional<RunResult> {
+  auto refuse = [&](const Validity& limit, double h_tried, InStep where = InStep::stage) -> std::optional<RunResult> {
     check_paths = true;
     if (!y_checked) {
       if (const Validity at = book.check_model_at(y, t); at.status != Status::ok) return stop_before(at);
       y_checked = true;
     }
     ++cost.rejected;
-    if (!(h_tried > min_step_at(t)))
-      return book.stop(limit.status,
-                       on_path ? path_stop_reason(limit, t, h_tried) : stage_stop_reason(limit, t, h_tried), y, t);
+    if (!(h_tried > min_step_at(t))) return book.stop(limit.status, step_stop_reason(limit, t, h_tried, where), y, t);
     h = std::max(kLimitShrink * h_tried, min_step_at(t));
     return std::nullopt;
   };
@@ -404,6 +402,14 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
     }
     ++cost.steps;
     const double t_old = t;
+    // undoes the step just taken (refused after the fact); its length
+    auto undo_step = [&] {
+      stepper.restore(y);
+      --cost.steps;
+      const double h_tried = t - t_old;
+      t = t_old;
+      return h_tried;
+    };
     if constexpr (lands_itself) {
       t = t_new;
       h = h_next;
@@ -425,12 +431,9 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
       const PathCheck path = check_step_path(problem, y, y_new, t - t_old, cost);
       const double reach = kNearLimitTravel * problem.model().params().radius;
       if (path.limit.status != Status::ok || path.travel > reach) {
-        stepper.restore(y);
-        --cost.steps;
-        const double h_tried = t - t_old;
-        t = t_old;
+        const double h_tried = undo_step();
         if (path.limit.status != Status::ok) {
-          if (std::optional<RunResult> stop = refuse(path.limit, h_tried, true)) return *stop;
+          if (std::optional<RunResult> stop = refuse(path.limit, h_tried, InStep::path)) return *stop;
         } else {
           ++cost.rejected;
           h = h_tried * 0.5 * reach / path.travel;
@@ -470,11 +473,7 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
         out.t.resize(rows_before);
         out.y.resize(rows_before);
         next = next_before;
-        stepper.restore(y);
-        --cost.steps;
-        const double h_tried = t - t_old;
-        t = t_old;
-        if (std::optional<RunResult> stop = refuse(row_limit, h_tried)) return *stop;
+        if (std::optional<RunResult> stop = refuse(row_limit, undo_step())) return *stop;
         continue;
       }
     } else if (lands) {

@@ -22,14 +22,18 @@ inline double t_end_of(const Problem& problem, const RunOptions& options) {
 
 // A model check's reason with the time it failed at (lift-off, curvature).
 std::string model_stop_reason(const Validity& v, double t);
-// The reason of a stage beyond a limit within the step of h from t: "r *
-// max curvature reached 1.04 at t = 0.3 (at a stage of the step of h = 0.05
-// from there)".
-std::string stage_stop_reason(const Validity& v, double t, double h);
-// The same for a point of the step's path between its stages (the
-// driver's check_step_path): "... (between the stages of the step of h =
-// 0.05 from there)".
-std::string path_stop_reason(const Validity& v, double t, double h);
+// Where in a step a limit was met: at one of its stages, or on its path
+// between them (the driver's check_step_path).
+enum class InStep { stage, path };
+// The reason of a limit met within the step of h from t: "r * max curvature
+// reached 1.04 at t = 0.3 (at a stage of the step of h = 0.05 from there)",
+// or "(between the stages of the step ...)" on the path.
+std::string step_stop_reason(const Validity& v, double t, double h, InStep where = InStep::stage);
+// The model's limit that margins m are beyond: curvature or lift-off; ok
+// otherwise (also for a false alarm). Non-finite margins (diverged) count
+// only with non_finite: the fixed-step loop stops there; an adaptive one
+// shrinks a non-finite trial by its own rule.
+Validity model_limit(const Problem& problem, const ModelMargins& m, bool non_finite = false);
 
 // A failure a stepper raises from inside a step (a library's error code or
 // exception) with the status the run should end with. The driver ends the
@@ -78,18 +82,11 @@ class RunBook {
     return v;
   }
 
-  // The limit a stage of the last step went beyond (Cost::watch), then
-  // clears the watch: curvature or lift-off, ok otherwise (also for a false
-  // alarm). Non-finite margins (diverged) count only with non_finite: the
-  // fixed-step loop stops there; an adaptive one shrinks a non-finite
-  // trial by its own rule.
+  // The limit a stage of the last step went beyond (Cost::watch; see
+  // model_limit), then clears the watch.
   Validity stage_limit(bool non_finite = false) {
-    StageWatch& w = run_.cost.watch;
-    w.beyond = false;
-    Validity v = problem_.check_model(w.first);
-    if (v.status == Status::curvature || v.status == Status::lift_off) return v;
-    if (non_finite && v.status == Status::diverged) return v;
-    return {};
+    run_.cost.watch.beyond = false;
+    return model_limit(problem_, run_.cost.watch.first, non_finite);
   }
 
   // The run reached its end at y, time t.
