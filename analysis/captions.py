@@ -20,9 +20,9 @@ PER_SCENE = (
     ("horizon-", "Energy error (top) and rotation defect, then the relative error of each first integral the "
      "scene declares (Routh's, the Chaplygin ball's), each the largest per window, against time on {scene}, "
      "log–log: the legend's p is the fitted growth err ∝ tᵖ over the shaded window."),
-    ("regime-", "Flat/Lie time ratio of the best same-order pair over the regime study's grid at an error of "
-     "{scene}: blue cells are where keeping R on SO(3) pays (above 1), red where the flat method wins, and each "
-     "cell names its ratio and cheapest method."),
+    ("regime-", "Flat/Lie time ratio of the best twin pair (the same tableau, controller and norm) over the regime "
+     "study's grid at an error of {scene}: blue cells are where keeping R on SO(3) pays (above 1), red where the "
+     "flat method wins, and each cell names its ratio and cheapest method."),
 )
 WHOLE = {
     answer.FIGURE: answer.CAPTION,

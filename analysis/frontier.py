@@ -7,7 +7,6 @@ import math
 from analysis import costs, pairs
 from analysis import report as rp
 
-LIBRARY_FAMILIES = ("odeint", "gsl", "scipy", "octave")
 GOAL = 0.5  # issue 35's goal on the R-feeds-back scenes, at 1e-6 and 1e-9
 
 # a bound on library / Lie is the opposite bound on Lie / library
@@ -18,7 +17,7 @@ def sides(runs):
     """(Lie-group methods, library methods) among the runs, from each run's `on_group` and `family`."""
     lie, library = [], []
     for r in runs:
-        side = lie if r.get("on_group") else library if r.get("family") in LIBRARY_FAMILIES else None
+        side = lie if r.get("on_group") else library if r.get("family") in pairs.LIBRARY_FAMILIES else None
         if side is not None and r["integrator"] not in side:
             side.append(r["integrator"])
     return lie, library

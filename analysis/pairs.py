@@ -1,6 +1,9 @@
-"""summary.md's "same tableau, flat vs Lie" table: methods that share a
+"""Flat/Lie pairs, in one place for the findings, the regime map and
+summary.md's "same tableau, flat vs Lie" table: methods that share a
 Butcher tableau, one on the flat 14-number view and one on SO(3), read at
-the same accuracy, so the difference is the geometry, not the tableau."""
+the same accuracy, so the difference is the geometry, not the tableau; and
+among them the geometry twins, which differ in nothing else (the suite's own
+code, the same controller and error norm)."""
 import math
 
 from analysis import costs
@@ -27,6 +30,57 @@ def tableau_pairs(runs):
         if r["integrator"] not in side:
             side.append(r["integrator"])
     return [(flat, lie, tableau) for (tableau, _), (flats, lies) in sides.items() for flat in flats for lie in lies]
+
+
+# a library's own code: its own error norm and step-size controller, so its
+# method beside a Lie method of the same tableau differs in more than the geometry
+LIBRARY_FAMILIES = ("odeint", "gsl", "scipy", "octave")
+
+
+def geometry_twin(flat_run, lie_run):
+    """Whether a flat method of lie's tableau differs from it only in the geometry: the suite's own (no library
+    family) with lie's controller (the suite's steppers share the error norm)."""
+    return flat_run.get("family") not in LIBRARY_FAMILIES and flat_run.get("controller") == lie_run.get("controller")
+
+
+def geometry_twins(runs, lie, flats):
+    """The flats (of lie's tableau) that differ from lie only in the geometry; where none does, all of them.
+
+    A library's method with the same tableau (odeint's dopri5 beside
+    rkmk-dp54-adaptive) has its own norm and controller: it is a variant, a
+    library comparison, and stands in only where the runs hold no twin (an
+    older report, or a sweep without rk-X-adaptive).
+    """
+    facts = {r["integrator"]: r for r in runs}
+    twins = [f for f in flats if geometry_twin(facts[f], facts[lie])]
+    return twins or list(flats)
+
+
+def against_twin(runs, lie, flat_ratios):
+    """(flat, ratio) of lie against its geometry twin with the smallest measured flat/Lie ratio (the cheapest).
+
+    flat_ratios: {flat of lie's tableau: time_ratio}; the twins are chosen
+    among all of them (geometry_twins), then those with a measured ratio
+    (finite median) count. None where no twin has one.
+    """
+    twins = geometry_twins(runs, lie, list(flat_ratios))
+    counted = [(ratio[0], flat, ratio) for flat, ratio in flat_ratios.items()
+               if flat in twins and math.isfinite(ratio[0])]
+    if not counted:
+        return None
+    _, flat, ratio = min(counted)
+    return flat, ratio
+
+
+def ratio_text(ratio):
+    """A time_ratio as text: "≤ 1.23 [1.10–1.40]" (bound, median, [lowest–highest] when repeated); "—" when none."""
+    median, low, high, repeats, bound = ratio
+    if not math.isfinite(median):
+        return "—"
+    text = f"{bound} {median:.2f}".strip()
+    if repeats > 1:
+        text += f" [{low:.2f}–{high:.2f}]"
+    return text
 
 
 HEADING = "## Same tableau, flat vs Lie"
