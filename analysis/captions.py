@@ -10,7 +10,7 @@ PER_SCENE = (
      "summary's cost tables read."),
     ("work-precision-", "Accuracy against wall time (left) and right-hand-side evaluations (right) on {scene}, "
      "every method: lower left is better; hollow markers are adaptive methods."),
-    ("convergence-", "Contact-point error (top) and rotation error (bottom) against step size on {scene}, "
+    ("convergence-", "Each error component the report lists (a panel each) against step size on {scene}, "
      "log–log: a line parallel to its dashed guide has its declared order, and the legend gives each method's "
      "fitted order with its 95 % interval and the runner's verdict."),
     ("tolerance-", "Error against requested tolerance per adaptive method on {scene}: a line of slope 1 means "

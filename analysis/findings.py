@@ -109,7 +109,7 @@ def order_lines(report):
 
 def exact_on(report, scene, name, metric):
     """True when every ok run of the method on the scene is below the reference's floor: exact there."""
-    mine = [r for r in rp.runs(report, scene) if r["integrator"] == name and rp.ok(r)]
+    mine = [r for r in rp.by_integrator(rp.runs(report, scene)).get(name, []) if rp.ok(r)]
     return bool(mine) and all(rp.below_floor(r, metric) for r in mine)
 
 

@@ -61,9 +61,8 @@ def figure_name(target):
 def _reach(runs, metric, floor, target):
     """{name: (cost, bound)} of the methods whose median-time curve reaches the target."""
     out = {}
-    for name in rp.integrators(runs):
-        mine = [r for r in runs if r["integrator"] == name]
-        cost, bound = costs.cost_to_reach(costs.curve(mine, rp.wall, metric, floor), target)
+    for name, mine in rp.by_integrator(runs).items():
+        cost, bound = costs.reach(mine, (target,), metric, floor)[target]
         if math.isfinite(cost):
             out[name] = (cost, bound)
     return out
@@ -95,7 +94,7 @@ def cell_result(report, scene, target, metric=rp.DEFAULT_METRIC):
     if reached:
         name = min(reached, key=lambda n: (reached[n][0], n))
         result["winner"] = (name, *reached[name])
-        result["on_group"] = any(bool(r.get("on_group")) for r in runs if r["integrator"] == name)
+        result["on_group"] = any(r.on_group for r in rp.by_integrator(runs)[name])
     if result["pairs"]:
         def cheaper_side(pair):
             return min(reached[n][0] if n in reached else math.inf for n in pair[1:3])
