@@ -10,7 +10,7 @@ PER_SCENE = (
      "summary's cost tables read."),
     ("work-precision-", "Accuracy against wall time (left) and right-hand-side evaluations (right) on {scene}, "
      "every method: lower left is better; hollow markers are adaptive methods."),
-    ("convergence-", "Contact-point error (top) and rotation error (bottom) against step size on {scene}, "
+    ("convergence-", "Each error component the report lists (a panel each) against step size on {scene}, "
      "log–log: a line parallel to its dashed guide has its declared order, and the legend gives each method's "
      "fitted order with its 95 % interval and the runner's verdict."),
     ("tolerance-", "Error against requested tolerance per adaptive method on {scene}: a line of slope 1 means "
@@ -20,9 +20,9 @@ PER_SCENE = (
     ("horizon-", "Energy error (top) and rotation defect, then the relative error of each first integral the "
      "scene declares (Routh's, the Chaplygin ball's), each the largest per window, against time on {scene}, "
      "log–log: the legend's p is the fitted growth err ∝ tᵖ over the shaded window."),
-    ("regime-", "Flat/Lie time ratio of the best same-order pair over the regime study's grid at an error of "
-     "{scene}: blue cells are where keeping R on SO(3) pays (above 1), red where the flat method wins, and each "
-     "cell names its ratio and cheapest method."),
+    ("regime-", "Flat/Lie time ratio of the best twin pair (the same tableau, controller and norm) over the regime "
+     "study's grid at an error of {scene}: blue cells are where keeping R on SO(3) pays (above 1), red where the "
+     "flat method wins, and each cell names its ratio and cheapest method."),
 )
 WHOLE = {
     "horizon-cost.png": "The price of a bounded energy over the horizon study's runs: per scene, each method's "

@@ -50,7 +50,7 @@ ROUNDING = {"error": 1e-13, "energy": 1e-12, "rotation_defect": 1e-13}
 
 def run_key(run):
     """(scene, integrator, setting text); the text carries h or the tolerances to 12 digits."""
-    return (run["scene"], run["integrator"], rp.setting(run, digits=12))
+    return (run.scene, run.integrator, rp.setting(run, digits=12))
 
 
 def _value_change(a, b, threshold_ratio, rounding):
@@ -137,37 +137,40 @@ def pooled_time_changes(rows):
 def compare_runs(a, b, metrics=(rp.DEFAULT_METRIC,)):
     """One row: the values side by side and the list of changes (kind, text) in the metrics given."""
     changes = []
-    if a.get("status") != b.get("status"):
-        changes.append(("status", f"{a.get('status')} → {b.get('status')}"))
+    if a.status != b.status:
+        changes.append(("status", f"{a.status} → {b.status}"))
     for c in metrics:
         text = _value_change(_error_value(a, c), _error_value(b, c), VALUE_RATIO, ROUNDING["error"])
         if text:
             changes.append((f"error.{c}", text))
     for key in ("energy", "rotation_defect"):
-        va = rp.num((a.get("drift") or {}).get(key))
-        vb = rp.num((b.get("drift") or {}).get(key))
+        va = rp.num((a.entry.get("drift") or {}).get(key))
+        vb = rp.num((b.entry.get("drift") or {}).get(key))
         text = _value_change(va, vb, VALUE_RATIO, ROUNDING[key])
         if text:
             changes.append((f"drift.{key}", text))
     ratio, p, changed = time_change(a, b)
     if changed:
         changes.append(("time", f"×{ratio:.3g} {'slower' if ratio > 1 else 'faster'} (p = {p:.2g})"))
-    return {"key": run_key(a), "status": (a.get("status"), b.get("status")),
+    return {"key": run_key(a), "status": (a.status, b.status),
             "worst": (rp.error(a, "worst"), rp.error(b, "worst")),
-            "energy": (rp.num((a.get("drift") or {}).get("energy")), rp.num((b.get("drift") or {}).get("energy"))),
+            "energy": (rp.num((a.entry.get("drift") or {}).get("energy")),
+                       rp.num((b.entry.get("drift") or {}).get("energy"))),
             "time": (rp.wall(a), rp.wall(b)), "ratio": ratio, "p": p, "changes": changes,
             "detectable": detectable(a, b), "repeats": (rp.samples(a).size, rp.samples(b).size)}
 
 
 def compare_orders(a, b):
+    """Per scene × method in both: the observed orders that moved, in every error component either report lists."""
     rows = []
     ob = {(o["scene"], o["integrator"]): o for o in rp.orders(b)}
+    components = rp.unique(rp.components(a) + rp.components(b))
     for o in rp.orders(a):
         key = (o["scene"], o["integrator"])
         if key not in ob:
             continue
         changes = []
-        for c in ("contact", "rotation"):
+        for c in components:
             va, vb = rp.observed(o, c), rp.observed(ob[key], c)
             if math.isfinite(va) != math.isfinite(vb) or (math.isfinite(va) and abs(va - vb) > ORDER_DELTA):
                 changes.append((f"order.{c}", f"{_fmt(va)} → {_fmt(vb)}"))
@@ -192,9 +195,9 @@ def _end_times(report):
         if math.isfinite(t):
             out[ref["scene"]] = t
     for run in rp.runs(report):
-        t = rp.num(run.get("t_end"))
-        if run["scene"] not in out and math.isfinite(t):
-            out[run["scene"]] = t
+        t = rp.num(run.entry.get("t_end"))
+        if run.scene not in out and math.isfinite(t):
+            out[run.scene] = t
     return out
 
 

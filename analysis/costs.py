@@ -7,7 +7,7 @@ from analysis import report as rp
 
 # accuracies the cost tables are read at (in the metric's units)
 TARGETS = (1e-6, 1e-9)
-COSTS = (("time", "wall time (s)", rp.wall), ("rhs", "rhs evals", lambda r: rp.num(r.get("rhs_evals"))))
+COSTS = (("time", "wall time (s)", rp.wall), ("rhs", "rhs evals", lambda r: r.rhs_evals))
 HOW = ("by log–log interpolation between the two runs that bracket the target along the method's "
        "work–precision curve (successful runs, sorted by cost); \"≤\": the method's cheapest run is already "
        "there, so the cost is an upper bound; \"—\": no run gets there")
@@ -71,17 +71,31 @@ def cost_to_reach(points, target):
     return cost, bound
 
 
+def reach(runs, targets, metric=rp.DEFAULT_METRIC, floor=0.0, cost_of=rp.wall, value_of=None):
+    """{target: (cost, bound)}: where one method's work–precision curve first reaches each target.
+
+    The one cost-to-target of the analysis (the cost tables, the findings'
+    and the regime map's cheapest method, the frontier, a pair's ratio per
+    timed repeat, the same-tableau table): the method's runs as a curve of
+    cost_of (median wall time unless given) against the metric's error,
+    read by log–log interpolation (crossing); cost NaN where it never gets
+    there. With value_of, {target: (cost, bound, value_of(run) there)},
+    interpolated in the same way (at_crossing).
+    """
+    points = curve(runs, cost_of, metric, floor)
+    if value_of is None:
+        return {target: cost_to_reach(points, target) for target in targets}
+    return {target: (cost, bound, value) for target in targets
+            for cost, value, bound in [at_crossing(points, target, value_of)]}
+
+
 def cost_rows(report, scene, metric=rp.DEFAULT_METRIC):
     """{integrator: {(kind, target): (cost, bound)}} for one scene."""
-    runs = rp.runs(report, scene)
+    floor = rp.floor(report, scene)
     out = {}
-    for name in rp.integrators(runs):
-        mine = [r for r in runs if r["integrator"] == name]
-        out[name] = {}
-        for kind, _, cost_of in COSTS:
-            points = curve(mine, cost_of, metric, rp.floor(report, scene))
-            for target in TARGETS:
-                out[name][(kind, target)] = cost_to_reach(points, target)
+    for name, mine in rp.by_integrator(rp.runs(report, scene)).items():
+        out[name] = {(kind, target): cost for kind, _, cost_of in COSTS
+                     for target, cost in reach(mine, TARGETS, metric, floor, cost_of).items()}
     return out
 
 

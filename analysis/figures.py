@@ -138,39 +138,38 @@ def order_label(order, component):
 
 
 def convergence(report, scene, palette):
-    """Error against step size, log-log: contact point (top), rotation (bottom)."""
+    """Error against step size, log-log: a panel per error component, in the report's order (its error_components)."""
     fixed = rp.runs(report, scene, adaptive=False)
     if not fixed:
         raise NothingToPlot(f"no fixed-step runs for scene {scene}")
     floor = rp.floor(report, scene)
     orders = {o["integrator"]: o for o in rp.orders(report) if o["scene"] == scene}
-    fig = new_figure(10, 8.5)
-    panels = (("contact", "contact-point error (m)"), ("rotation", "rotation error: angle of R$_{ref}^T$R (rad)"))
-    axes = fig.subplots(2, 1, sharex=True)
-    names = rp.integrators(fixed)
-    for ax, (component, ylabel) in zip(axes, panels):
+    panels = rp.components(report)
+    fig = new_figure(10, 4.25 * len(panels))
+    axes = np.atleast_1d(fig.subplots(len(panels), 1, sharex=True))
+    for ax, component in zip(axes, panels):
         anchor = {}  # declared order: the top (largest h) point of each method declaring it
-        for name in names:
-            mine = sorted((r for r in fixed if r["integrator"] == name), key=lambda r: rp.num(r.get("h")))
+        for name, mine in rp.by_integrator(fixed).items():
+            mine = sorted(mine, key=lambda r: r.h)
             good = [r for r in mine if rp.ok(r)]
-            h, e = positive([rp.num(r.get("h")) for r in good], [rp.error(r, component) for r in good])
+            h, e = positive([r.h for r in good], [rp.error(r, component) for r in good])
             style = palette.style(name)
             failed = len(mine) - len(good)
             label = f"{name}  {order_label(orders.get(name), component)}" + (f"  [{failed} failed]" if failed else "")
             ax.plot(h, e, label=label, markersize=4.5, linewidth=1.3, **style)
             # below the floor: drawn on the floor, hollow, so the reader sees the run was there
-            low = [rp.num(r.get("h")) for r in good if rp.below_floor(r, component)]
+            low = [r.h for r in good if rp.below_floor(r, component)]
             if low and floor > 0:
                 ax.plot(low, [floor] * len(low), linestyle="none", marker=style["marker"], color=style["color"],
                         markerfacecolor="none", markersize=5, label="_below floor")
             first = mine[0]
             key = "declared_rotation_order" if component == "rotation" else "declared_order"
-            p = first.get(key, first.get("declared_order"))
+            p = first.entry.get(key, first.declared_order)
             if h.size and isinstance(p, (int, float)) and p > 0:
                 anchor.setdefault(p, []).append((h[-1], e[-1]))
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_ylabel(ylabel)
+        ax.set_ylabel(rp.metric_label(report, component))
         ax.grid(True, which="major", alpha=0.3)
         ax.set_title(f"{scene}: {component} error against step size", fontsize=10)
         if empty_log_axes(ax, f"no successful run with a measured {component} error"):
@@ -187,7 +186,7 @@ def convergence(report, scene, palette):
         legend_right(ax, title="fitted order p ± 95 % interval, the runner's verdict\n(as declared / lower / exact / "
                                "inconclusive; the report's orders)")
     axes[-1].set_xlabel("step size h (s)")
-    power_of_two_ticks(axes[-1], [rp.num(r.get("h")) for r in fixed])
+    power_of_two_ticks(axes[-1], [r.h for r in fixed])
     return fig
 
 
@@ -216,7 +215,7 @@ def _drift_series(ax, entries, key, palette):
 def drift(report, scene, palette):
     """Energy error and rotation defect against time (drift runs) and against cost (sweep runs)."""
     series = [d for d in rp.drift_runs(report, scene) if d.get("t")]
-    runs = [r for r in rp.runs(report, scene) if r.get("drift")]
+    runs = [r for r in rp.runs(report, scene) if r.entry.get("drift")]
     if not series and not runs:
         raise NothingToPlot(f"no drift runs and no runs with drift for scene {scene}")
     rows = (1 if series else 0) + (1 if runs else 0)
@@ -237,22 +236,19 @@ def drift(report, scene, palette):
         legend_right(axes[row, 1], title="growth: flat = bounded,\nslope 1 = linear, 2 = quadratic")
         row += 1
     if runs:
-        names = rp.integrators(runs)
+        of = rp.by_integrator(runs)
         for ax, key, label in ((axes[row, 0], "energy", "largest energy error max|H − H$_0$| (J)"),
                                (axes[row, 1], "rotation_defect", "largest rotation defect ‖R$^T$R − I‖$_F$")):
-            for name in names:
-                mine = sorted((r for r in runs if r["integrator"] == name and rp.ok(r)),
-                              key=lambda r: rp.num(r.get("rhs_evals")))
-                x, y = positive([rp.num(r.get("rhs_evals")) for r in mine],
-                                [rp.num(r["drift"].get(key)) for r in mine])
+            for name, theirs in of.items():
+                mine = sorted((r for r in theirs if rp.ok(r)), key=lambda r: r.rhs_evals)
+                x, y = positive([r.rhs_evals for r in mine], [rp.num(r.entry["drift"].get(key)) for r in mine])
                 style = palette.style(name)
-                adaptive = bool(runs[[r["integrator"] for r in runs].index(name)]["adaptive"])
+                adaptive = theirs[0].adaptive
                 ax.plot(x, y, label=name, markersize=4, linewidth=1.2,
                         markerfacecolor="none" if adaptive else style["color"], **style)
                 # failed runs keep their drift up to the stop: crosses, off the lines
-                failed = [r for r in runs if r["integrator"] == name and not rp.ok(r)]
-                fx, fy = positive([rp.num(r.get("rhs_evals")) for r in failed],
-                                  [rp.num(r["drift"].get(key)) for r in failed])
+                failed = [r for r in theirs if not rp.ok(r)]
+                fx, fy = positive([r.rhs_evals for r in failed], [rp.num(r.entry["drift"].get(key)) for r in failed])
                 if fx.size:
                     ax.plot(fx, fy, linestyle="none", marker="x", color=style["color"], markersize=7,
                             label="_failed")

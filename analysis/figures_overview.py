@@ -62,16 +62,17 @@ def _largest_stable_panel(ax, entries, palette):
 
 
 def _failure_panel(ax, runs, palette):
-    names = rp.integrators(runs)
-    statuses = [s for s in STATUS_ORDER if any(r["status"] == s for r in runs)]
-    statuses += rp.unique(r["status"] for r in runs if r["status"] not in STATUS_ORDER)
+    of = rp.by_integrator(runs)
+    names = list(of)
+    statuses = [s for s in STATUS_ORDER if any(r.status == s for r in runs)]
+    statuses += rp.unique(r.status for r in runs if r.status not in STATUS_ORDER)
     left = np.zeros(len(names))
     for status in statuses:
-        counts = np.array([sum(1 for r in runs if r["integrator"] == n and r["status"] == status) for n in names])
+        counts = np.array([sum(1 for r in of[n] if r.status == status) for n in names])
         colour = st.STATUS_COLOURS.get(status, "#444444")
         ax.barh(range(len(names)), counts, left=left, color=colour, label=status, edgecolor="white",
                 linewidth=0.5)
-        widest = max(1, max(sum(1 for r in runs if r["integrator"] == n) for n in names))
+        widest = max(1, max(len(of[n]) for n in names))
         for i, c in enumerate(counts):
             # a count only where its segment is wide enough to hold it
             if c and status != "ok" and c / widest > 0.04:
@@ -83,7 +84,7 @@ def _failure_panel(ax, runs, palette):
     _colour_ticklabels(ax, names, palette)
     ax.set_ylim(len(names) - 0.5, -0.5)
     ax.set_xlabel("runs (all scenes, step sizes and tolerances)")
-    failed = sum(1 for r in runs if r["status"] != "ok")
+    failed = sum(1 for r in runs if r.status != "ok")
     ax.set_title(f"status of every sweep run: {failed} of {len(runs)} failed", fontsize=10)
     status_legend = ax.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False,
                               title="status", title_fontsize=7.5)

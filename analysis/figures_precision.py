@@ -17,7 +17,7 @@ def _cost_axes_label(kind):
 def _draw_method(ax, runs, name, cost_of, metric, floor, palette, label=None):
     points = costs.curve(runs, cost_of, metric, floor)
     style = palette.style(name)
-    adaptive = bool(runs[0]["adaptive"])
+    adaptive = runs[0].adaptive
     suffix = " (adaptive)" if adaptive and "adaptive" not in name else ""
     ax.plot([c for c, _, _ in points], [e for _, e, _ in points], label=(label or name) + suffix,
             markersize=4.5, linewidth=1.3, markerfacecolor="none" if adaptive else style["color"], **style)
@@ -53,11 +53,11 @@ def _scene_runs(report, scene):
 def work_precision(report, scene, palette, metric=rp.DEFAULT_METRIC):
     """Error against wall time (left) and rhs evaluations (right), every method of the scene."""
     runs, floor = _scene_runs(report, scene)
-    names = rp.integrators(runs)
-    fig, axes = _figure(names)
+    of = rp.by_integrator(runs)
+    fig, axes = _figure(list(of))
     for ax, (kind, _, cost_of) in zip(axes, costs.COSTS):
-        for name in names:
-            _draw_method(ax, [r for r in runs if r["integrator"] == name], name, cost_of, metric, floor, palette)
+        for name in of:
+            _draw_method(ax, of[name], name, cost_of, metric, floor, palette)
         _finish_axes(ax, scene, metric, kind, floor, "")
     axes[0].set_ylabel(rp.metric_label(report, metric))
     targets = ", ".join(f"{t:g}" for t in costs.TARGETS)
@@ -83,7 +83,8 @@ BEST_HOW = ("the member with the lowest mean log10 cost to reach the targets 10^
 
 def best_of_family(runs, names, cost_of, metric, floor):
     """The member of a family with the lowest cost over the family's accuracy range (BEST_HOW; ties: first name)."""
-    curves = {n: costs.curve([r for r in runs if r["integrator"] == n], cost_of, metric, floor) for n in names}
+    of = rp.by_integrator(runs)
+    curves = {n: costs.curve(of.get(n, []), cost_of, metric, floor) for n in names}
     curves = {n: c for n, c in curves.items() if c}
     if not curves:
         return None
@@ -95,8 +96,7 @@ def best_of_family(runs, names, cost_of, metric, floor):
 
     def score(name):
         total = 0.0
-        for target in targets:
-            cost, _ = costs.cost_to_reach(curves[name], target)
+        for cost, _ in costs.reach(of[name], targets, metric, floor, cost_of).values():
             total += math.log10(cost) if math.isfinite(cost) and cost > 0 else penalty
         return total / len(targets)
     return min(curves, key=lambda n: (score(n), names.index(n)))
@@ -116,7 +116,7 @@ def work_precision_best(report, scene, palette, metric=rp.DEFAULT_METRIC):
             if best is None:
                 ax.plot([], [], label=f"{family}: no successful run")
                 continue
-            _draw_method(ax, [r for r in runs if r["integrator"] == best], best, cost_of, metric, floor, palette,
+            _draw_method(ax, rp.by_integrator(runs)[best], best, cost_of, metric, floor, palette,
                          label=f"{family}: {best}")
         _finish_axes(ax, scene, metric, kind, floor, "best of each family, ")
     axes[0].set_ylabel(rp.metric_label(report, metric))
@@ -133,8 +133,8 @@ def tolerance(report, scene, palette, metric=rp.DEFAULT_METRIC):
     fig = new_figure(9, 5.5)
     ax = fig.subplots()
     every_tol = []
-    for name in rp.integrators(runs):
-        mine = [r for r in runs if r["integrator"] == name and rp.ok(r)]
+    for name, theirs in rp.by_integrator(runs).items():
+        mine = [r for r in theirs if rp.ok(r)]
         tol, err = positive([rp.tolerance(r) for r in mine], [rp.error(r, metric) for r in mine])
         every_tol += list(tol)
         fit = fits.get(name)

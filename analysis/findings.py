@@ -8,6 +8,7 @@ import math
 from analysis import answer, costs, frontier, horizon, horizon_ladder, pairs, regime, reversibility
 from analysis import markdown as md
 from analysis import report as rp
+from analysis.pairs import ratio_text
 
 HEADING = "## Findings"
 
@@ -26,16 +27,6 @@ def scene_kind(report, scene):
 
 def feeds_back(report, scene):
     return bool((rp.reference(report, scene) or {}).get("r_feeds_back"))
-
-
-def ratio_text(ratio):
-    median, low, high, repeats, bound = ratio
-    if not math.isfinite(median):
-        return "—"
-    text = f"{bound} {median:.2f}".strip()
-    if repeats > 1:
-        text += f" [{low:.2f}–{high:.2f}]"
-    return text
 
 
 def pair_ratios(report, scene, metric):
@@ -118,34 +109,22 @@ def order_lines(report):
 
 def exact_on(report, scene, name, metric):
     """True when every ok run of the method on the scene is below the reference's floor: exact there."""
-    mine = [r for r in rp.runs(report, scene) if r["integrator"] == name and rp.ok(r)]
+    mine = [r for r in rp.by_integrator(rp.runs(report, scene)).get(name, []) if rp.ok(r)]
     return bool(mine) and all(rp.below_floor(r, metric) for r in mine)
-
-
-def geometry_twins(report, scene, lie, flats):
-    """The flats that differ from lie only in the geometry: the suite's own (no library family) with lie's controller.
-
-    A library's method with the same tableau (odeint's dopri5 beside rkmk-dp54-adaptive) has its own norm and
-    controller: it stays a variant, a library comparison. Where no flat is a twin, all of them.
-    """
-    facts = {r["integrator"]: r for r in rp.runs(report, scene)}
-    controller = facts[lie].get("controller")
-    twins = [f for f in flats if facts[f].get("family") not in frontier.LIBRARY_FAMILIES
-             and facts[f].get("controller") == controller]
-    return twins or list(flats)
 
 
 def aggregate_cells(report, scene, metric, ratios_of_scene):
     """(cells, bounds, exact, variants) of one scene for the aggregates.
 
     cells: (lie, flat, target, ratio) of each Lie method once, against the
-    cheapest of its geometry twins (geometry_twins: the same tableau, the
+    cheapest of its geometry twins (pairs.against_twin: the same tableau, the
     suite's own code and the same controller; the smallest flat/Lie ratio);
     bounds: the cells whose ratio is a "≤"/"≥" bound (listed apart, never
     counted); exact: the Lie methods exact on the scene (left out);
     variants: {(flat, lie)} of the other flat methods (kept in the tables).
     """
     cells, bounds, exact, variants = [], [], [], set()
+    runs = rp.runs(report, scene)
     by_lie = {}
     for flat, lie, _, ratios in ratios_of_scene:
         by_lie.setdefault(lie, []).append((flat, ratios))
@@ -153,16 +132,13 @@ def aggregate_cells(report, scene, metric, ratios_of_scene):
         if exact_on(report, scene, lie, metric):
             exact.append(lie)
             continue
-        twins = geometry_twins(report, scene, lie, [flat for flat, _ in flats])
         for t in costs.TARGETS:
-            found = [(r[0], flat, r) for flat, ratios in flats for r in [ratios[t]] if math.isfinite(r[0])]
-            if not found:
+            ratios = {flat: ratios[t] for flat, ratios in flats}
+            chosen = pairs.against_twin(runs, lie, ratios)
+            if chosen is None:
                 continue
-            counted = [x for x in found if x[1] in twins]
-            if not counted:
-                continue
-            _, flat, ratio = min(counted)
-            variants |= {(f, lie) for _, f, _ in found if f != flat}
+            flat, ratio = chosen
+            variants |= {(f, lie) for f, r in ratios.items() if f != flat and math.isfinite(r[0])}
             (bounds if ratio[4] else cells).append((lie, flat, t, ratio))
     return cells, bounds, exact, variants
 
@@ -202,7 +178,7 @@ def frontier_lines(report, scenes, metric):
         return []
     text = "; ".join(f"{scene} at {target:.0e}: {lie} / {library} {ratio_text(ratio)}"
                      for scene, target, (lie, library, ratio) in cells)
-    families = ", ".join(frontier.LIBRARY_FAMILIES)
+    families = ", ".join(pairs.LIBRARY_FAMILIES)
     return [f"- The Lie frontier where R feeds back (the best Lie method's time over the best library method's, "
             f"families {families}; below 1 the Lie method is cheaper; the goal is ≤ {frontier.GOAL}): {text}."]
 

@@ -7,7 +7,6 @@ import math
 from analysis import costs, pairs
 from analysis import report as rp
 
-LIBRARY_FAMILIES = ("odeint", "gsl", "scipy", "octave")
 GOAL = 0.5  # issue 35's goal on the R-feeds-back scenes, at 1e-6 and 1e-9
 
 # a bound on library / Lie is the opposite bound on Lie / library
@@ -18,18 +17,18 @@ def sides(runs):
     """(Lie-group methods, library methods) among the runs, from each run's `on_group` and `family`."""
     lie, library = [], []
     for r in runs:
-        side = lie if r.get("on_group") else library if r.get("family") in LIBRARY_FAMILIES else None
-        if side is not None and r["integrator"] not in side:
-            side.append(r["integrator"])
+        side = lie if r.on_group else library if r.family in pairs.LIBRARY_FAMILIES else None
+        if side is not None and r.integrator not in side:
+            side.append(r.integrator)
     return lie, library
 
 
 def cheapest(runs, names, metric, floor, target):
     """(cost, bound, name) of the name whose median wall time to reach target is least; None if none gets there."""
     reached = []
+    of = rp.by_integrator(runs)
     for name in names:
-        points = costs.curve([r for r in runs if r["integrator"] == name], rp.wall, metric, floor)
-        cost, bound = costs.cost_to_reach(points, target)
+        cost, bound = costs.reach(of.get(name, []), (target,), metric, floor)[target]
         if math.isfinite(cost):
             reached.append((cost, bound, name))
     return min(reached) if reached else None

@@ -1,6 +1,9 @@
-"""summary.md's "same tableau, flat vs Lie" table: methods that share a
+"""Flat/Lie pairs, in one place for the findings, the regime map and
+summary.md's "same tableau, flat vs Lie" table: methods that share a
 Butcher tableau, one on the flat 14-number view and one on SO(3), read at
-the same accuracy, so the difference is the geometry, not the tableau."""
+the same accuracy, so the difference is the geometry, not the tableau; and
+among them the geometry twins, which differ in nothing else (the suite's own
+code, the same controller and error norm)."""
 import math
 
 from analysis import costs
@@ -19,21 +22,70 @@ def tableau_pairs(runs):
     """
     sides = {}
     for r in runs:
-        tableau = r.get("tableau")
-        if not tableau:
+        if not r.tableau:
             continue
-        key = (tableau, bool(r.get("adaptive")))
-        side = sides.setdefault(key, ([], []))[1 if r.get("on_group") else 0]
-        if r["integrator"] not in side:
-            side.append(r["integrator"])
+        side = sides.setdefault((r.tableau, r.adaptive), ([], []))[1 if r.on_group else 0]
+        if r.integrator not in side:
+            side.append(r.integrator)
     return [(flat, lie, tableau) for (tableau, _), (flats, lies) in sides.items() for flat in flats for lie in lies]
+
+
+# a library's own code: its own error norm and step-size controller, so its
+# method beside a Lie method of the same tableau differs in more than the geometry
+LIBRARY_FAMILIES = ("odeint", "gsl", "scipy", "octave")
+
+
+def geometry_twin(flat_run, lie_run):
+    """Whether a flat method of lie's tableau differs from it only in the geometry: the suite's own (no library
+    family) with lie's controller (the suite's steppers share the error norm)."""
+    return flat_run.family not in LIBRARY_FAMILIES and flat_run.controller == lie_run.controller
+
+
+def geometry_twins(runs, lie, flats):
+    """The flats (of lie's tableau) that differ from lie only in the geometry; where none does, all of them.
+
+    A library's method with the same tableau (odeint's dopri5 beside
+    rkmk-dp54-adaptive) has its own norm and controller: it is a variant, a
+    library comparison, and stands in only where the runs hold no twin (an
+    older report, or a sweep without rk-X-adaptive).
+    """
+    facts = {r.integrator: r for r in runs}
+    twins = [f for f in flats if geometry_twin(facts[f], facts[lie])]
+    return twins or list(flats)
+
+
+def against_twin(runs, lie, flat_ratios):
+    """(flat, ratio) of lie against its geometry twin with the smallest measured flat/Lie ratio (the cheapest).
+
+    flat_ratios: {flat of lie's tableau: time_ratio}; the twins are chosen
+    among all of them (geometry_twins), then those with a measured ratio
+    (finite median) count. None where no twin has one.
+    """
+    twins = geometry_twins(runs, lie, list(flat_ratios))
+    counted = [(ratio[0], flat, ratio) for flat, ratio in flat_ratios.items()
+               if flat in twins and math.isfinite(ratio[0])]
+    if not counted:
+        return None
+    _, flat, ratio = min(counted)
+    return flat, ratio
+
+
+def ratio_text(ratio):
+    """A time_ratio as text: "≤ 1.23 [1.10–1.40]" (bound, median, [lowest–highest] when repeated); "—" when none."""
+    median, low, high, repeats, bound = ratio
+    if not math.isfinite(median):
+        return "—"
+    text = f"{bound} {median:.2f}".strip()
+    if repeats > 1:
+        text += f" [{low:.2f}–{high:.2f}]"
+    return text
 
 
 HEADING = "## Same tableau, flat vs Lie"
 
 
-def reached(runs, metric, floor, target):
-    """{"time": (cost, bound), "rhs": (cost, bound), "rotation": value} of one method at one target.
+def reached(runs, metric, floor, targets):
+    """{target: {"time": (cost, bound), "rhs": (cost, bound), "rotation": value}} of one method.
 
     The rotation error is read where the rhs-evaluation curve crosses the
     target (interpolated like the cost; the cheapest run's own when "≤"); a
@@ -41,13 +93,13 @@ def reached(runs, metric, floor, target):
     """
     def rotation_of(run):
         return floor if floor > 0 and rp.below_floor(run, "rotation") else rp.error(run, "rotation")
-    out = {}
+    out = {target: {} for target in targets}
     for kind, _, cost_of in costs.COSTS:
-        points = costs.curve(runs, cost_of, metric, floor)
-        cost, rotation, bound = costs.at_crossing(points, target, rotation_of)
-        out[kind] = (cost, bound)
-        if kind == "rhs":
-            out["rotation"] = rotation
+        reached_at = costs.reach(runs, targets, metric, floor, cost_of, rotation_of)
+        for target, (cost, bound, rotation) in reached_at.items():
+            out[target][kind] = (cost, bound)
+            if kind == "rhs":
+                out[target]["rotation"] = rotation
     return out
 
 
@@ -56,11 +108,12 @@ def pair_rows(report, scene, metric=rp.DEFAULT_METRIC):
     runs = rp.runs(report, scene)
     families = rp.families(report)
     floor = rp.floor(report, scene)
+    of = rp.by_integrator(runs)
     for flat, lie, _ in tableau_pairs(runs):
+        cells = {name: reached(of[name], metric, floor, costs.TARGETS) for name in (flat, lie)}
         for target in costs.TARGETS:
             for name in (flat, lie):
-                mine = [r for r in runs if r["integrator"] == name]
-                cell = reached(mine, metric, floor, target)
+                cell = cells[name][target]
                 rotation = cell["rotation"]
                 # at the floor: as accurate as the reference can tell
                 at_floor = floor > 0 and math.isfinite(rotation) and rotation <= floor * (1 + 1e-9)
@@ -105,12 +158,13 @@ def time_ratio(runs, flat, lie, metric, floor, target):
     side by side; bound is "≤"/"≥" when a side's cheapest run is already
     there (its cost an upper bound). NaNs when a side never gets there.
     """
-    mine = {n: [r for r in runs if r["integrator"] == n] for n in (flat, lie)}
+    of = rp.by_integrator(runs)
+    mine = {n: of.get(n, []) for n in (flat, lie)}
     repeats = max((rp.samples(r).size for n in mine for r in mine[n]), default=0)
     ratios, bound = [], ""
     for k in range(max(1, repeats)):
         cost = _sample_cost(k)
-        (a, bound_a), (b, bound_b) = (costs.cost_to_reach(costs.curve(mine[n], cost, metric, floor), target)
+        (a, bound_a), (b, bound_b) = (costs.reach(mine[n], (target,), metric, floor, cost)[target]
                                       for n in (flat, lie))
         if math.isfinite(a) and math.isfinite(b) and b > 0:
             ratios.append(a / b)

@@ -5,12 +5,14 @@ border: the crossover fitted over the cells and checked on the held-out
 scenes (analysis/crossover.py).
 
 Per cell and target accuracy: the cheapest method (median wall time to the
-target, costs.HOW) and the flat/Lie time ratio of the best same-order pair:
-for each declared order with a flat-view and a Lie-group method (MethodInfo
-`on_group`) that both reach the target, the cheapest of each side; the cell
-shows the order whose cheaper side is the cheapest (the pair that matters at
-that accuracy), with the ratio's median and [lowest–highest] over the timed
-repeats (pairs.time_ratio); a tie where that range holds 1. Heat maps
+target, costs.HOW) and the flat/Lie time ratio of the best twin pair: each
+Lie-group method (MethodInfo `on_group`) against its geometry twin, the flat
+method of its tableau that differs from it in nothing else (pairs.py, as the
+findings pair them: rk-dp54-adaptive with rkmk-dp54-adaptive, not odeint's
+dopri5); the cell shows the pair whose cheaper side is the cheapest (the pair
+that matters at that accuracy), with the ratio's median and
+[lowest–highest] over the timed repeats (pairs.time_ratio); a tie where
+that range holds 1. Heat maps
 regime-<target>.png, the border's figure regime-border.png, a section of
 summary.md and lines of its findings.
 """
@@ -27,7 +29,7 @@ TARGETS = (1e-4, 1e-6, 1e-9)
 AXES = ("inertia", "spin", "roughness", "t_end", "bowl", "speed")
 BORDER_FIGURE = "regime-border.png"
 HEADING = "## Regime map"
-NO_PAIR = "#d0d0d0"  # a heat-map cell where no same-order pair reached the target
+NO_PAIR = "#d0d0d0"  # a heat-map cell where no twin pair reached the target
 
 
 def cells(report):
@@ -59,42 +61,44 @@ def figure_name(target):
 def _reach(runs, metric, floor, target):
     """{name: (cost, bound)} of the methods whose median-time curve reaches the target."""
     out = {}
-    for name in rp.integrators(runs):
-        mine = [r for r in runs if r["integrator"] == name]
-        cost, bound = costs.cost_to_reach(costs.curve(mine, rp.wall, metric, floor), target)
+    for name, mine in rp.by_integrator(runs).items():
+        cost, bound = costs.reach(mine, (target,), metric, floor)[target]
         if math.isfinite(cost):
             out[name] = (cost, bound)
     return out
 
 
-def same_order_pairs(runs, reached):
-    """[(order, flat, lie)]: per declared order, the cheapest flat and the cheapest Lie method that reach it."""
-    facts = {r["integrator"]: (r.get("declared_order"), bool(r.get("on_group"))) for r in runs}
-    best = {}
-    for name, (cost, _) in reached.items():
-        order, on_group = facts[name]
-        key = (order, on_group)
-        if order is not None and (key not in best or cost < reached[best[key]][0]):
-            best[key] = name
-    orders = sorted({o for o, _ in best if (o, False) in best and (o, True) in best})
-    return [(o, best[(o, False)], best[(o, True)]) for o in orders]
+def twin_pairs(runs, metric, floor, target):
+    """[(tableau, flat, lie, ratio)]: each Lie method of a tableau against its geometry twin (pairs.against_twin:
+    the same tableau, controller and norm, the cheapest where several), with a measured ratio at the target."""
+    by_lie = {}
+    for flat, lie, tableau in pairs.tableau_pairs(runs):
+        by_lie.setdefault((lie, tableau), []).append(flat)
+    out = []
+    for (lie, tableau), flats in by_lie.items():
+        ratios = {flat: pairs.time_ratio(runs, flat, lie, metric, floor, target) for flat in flats}
+        chosen = pairs.against_twin(runs, lie, ratios)
+        if chosen is not None:
+            out.append((tableau, chosen[0], lie, chosen[1]))
+    return out
 
 
 def cell_result(report, scene, target, metric=rp.DEFAULT_METRIC):
-    """{"winner": (name, cost, bound) | None, "on_group": bool, "pairs": [(order, flat, lie, ratio)],
-    "pair": the headline pair | None} of one scene at one target; ratio as pairs.time_ratio."""
+    """{"winner": (name, cost, bound) | None, "on_group": bool, "pairs": [(tableau, flat, lie, ratio)],
+    "pair": the headline pair | None} of one scene at one target; ratio as pairs.time_ratio. The headline pair
+    is the one whose cheaper side is cheapest (the pair that matters at that accuracy)."""
     runs = rp.runs(report, scene)
     floor = rp.floor(report, scene)
     reached = _reach(runs, metric, floor, target)
-    result = {"winner": None, "on_group": False, "pairs": [], "pair": None}
+    result = {"winner": None, "on_group": False, "pairs": twin_pairs(runs, metric, floor, target), "pair": None}
     if reached:
         name = min(reached, key=lambda n: (reached[n][0], n))
         result["winner"] = (name, *reached[name])
-        result["on_group"] = any(bool(r.get("on_group")) for r in runs if r["integrator"] == name)
-    for order, flat, lie in same_order_pairs(runs, reached):
-        result["pairs"].append((order, flat, lie, pairs.time_ratio(runs, flat, lie, metric, floor, target)))
+        result["on_group"] = any(r.on_group for r in rp.by_integrator(runs)[name])
     if result["pairs"]:
-        result["pair"] = min(result["pairs"], key=lambda p: min(reached[p[1]][0], reached[p[2]][0]))
+        def cheaper_side(pair):
+            return min(reached[n][0] if n in reached else math.inf for n in pair[1:3])
+        result["pair"] = min(result["pairs"], key=cheaper_side)
     return result
 
 
@@ -137,9 +141,8 @@ def flat_wins(report, results):
 def _pair_text(pair):
     if pair is None:
         return "—", "—"
-    order, flat, lie, ratio = pair
-    from analysis.findings import ratio_text  # findings imports this module: late, to avoid a cycle
-    return f"order {order}: {flat} / {lie}", ratio_text(ratio)
+    tableau, flat, lie, ratio = pair
+    return f"{tableau}: {flat} / {lie}", pairs.ratio_text(ratio)
 
 
 def _coords(cell):
@@ -154,9 +157,10 @@ def regime_section(report, metric=rp.DEFAULT_METRIC, results=None):
     lines = [HEADING, "",
              f"The regime study's generated scenes (docs/usage.md, \"The regime study\"): per cell and {metric} "
              f"error, the cheapest method by wall time ({costs.HOW}) and the flat / Lie time ratio of the best "
-             "same-order pair: per declared order the cheapest flat-view and the cheapest Lie-group method that "
-             "reach the target; the order shown is the one whose cheaper side is cheapest. Ratio above 1: the Lie "
-             "method is cheaper; median [lowest–highest] over the timed repeats. Figures: "
+             "twin pair: each Lie-group method against its geometry twin, the flat method of its tableau with the "
+             "same controller and error norm (the suite's own, not a library's; the cheapest where several); the "
+             "pair shown is the one whose cheaper side is cheapest. Ratio above 1: the Lie method is cheaper; "
+             "median [lowest–highest] over the timed repeats. Figures: "
              + ", ".join(f"`{figure_name(t)}`" for t in TARGETS) + ".", ""]
     for target in TARGETS:
         rows = []
@@ -167,7 +171,7 @@ def regime_section(report, metric=rp.DEFAULT_METRIC, results=None):
             rows.append(_coords(cell) + [cheapest, *_pair_text(r["pair"])])
         lines += [f"### Regime map at {metric} error {target:.0e}", ""]
         lines += md.table(["inertia ratio", "spin (rad/s)", "roughness", "t_end (s)", "bowl a", "speed (m/s)",
-                           "|ω0| / Ω", "cheapest", "best same-order pair (flat / Lie)", "flat / Lie time"],
+                           "|ω0| / Ω", "cheapest", "best twin pair (tableau: flat / Lie)", "flat / Lie time"],
                           [row[:len(AXES)] + [crossover.x_text(crossover.predictor(cell))] + row[len(AXES):]
                            for row, cell in zip(rows, cells(report))]) + [""]
     return lines + held_out_section(report, results)
@@ -188,7 +192,7 @@ def held_out_section(report, results):
             for e, target, x, predicted, measured, hit, _ in held_out_rows(report, results, fit)]
     return ["### Held-out scenes", "",
             "Scenes the crossover was not fitted on: generated off the grid's values and the shipped chaplygin "
-            "scenes. Predicted: Lie where |ω0| / Ω is above the fitted x*; measured: the best same-order pair's "
+            "scenes. Predicted: Lie where |ω0| / Ω is above the fitted x*; measured: the best twin pair's "
             "ratio, a tie where its [lowest–highest] holds 1 (not counted).", ""] + md.table(
         ["scene", "error", "|ω0| / Ω", "predicted", "measured", "flat / Lie time", "right"], rows) + [""]
 
@@ -214,7 +218,7 @@ def findings_lines(report, metric=rp.DEFAULT_METRIC, results=None):
         if values:
             kinds = (crossover.LIE, crossover.FLAT, crossover.TIE)
             count = {k: sum(1 for _, w in groups[where] if w == k) for k in kinds}
-            parts.append(f"{label} the Lie side of the best same-order pair is cheaper in {count[crossover.LIE]}, "
+            parts.append(f"{label} the Lie side of the best twin pair is cheaper in {count[crossover.LIE]}, "
                          f"the flat side in {count[crossover.FLAT]}, and {count[crossover.TIE]} are ties (the "
                          f"repeats' range holds 1) of {len(values)} measured cell × target, flat/Lie "
                          f"{values[0]:.2f} to {values[-1]:.2f} (median {float(np.median(values)):.2f})")
@@ -222,7 +226,7 @@ def findings_lines(report, metric=rp.DEFAULT_METRIC, results=None):
     top = sorted(winners.items(), key=lambda x: (-x[1], x[0]))[:3]
     cheapest = ", ".join(f"{n} {k}" for n, k in top) if top else "none"
     targets = ", ".join(f"{t:.0e}" for t in TARGETS)
-    body = "; ".join(parts) if parts else "no same-order flat/Lie pair reached a target"
+    body = "; ".join(parts) if parts else "no flat/Lie twin pair reached a target"
     return [f"- Regime map ({len(cells(report))} generated scenes × {metric} error {targets}, figures "
             f"regime-<target>.png): {body}. Cheapest method most often (of {total} cell × target): {cheapest}; "
             f"{total - sum(winners.values())} reached by none."] + border_lines(report, results)
@@ -275,7 +279,7 @@ def _short(name):
 
 def heat_map(report, target, metric=rp.DEFAULT_METRIC, results=None):
     """regime-<target>.png: a panel per (t_end, roughness) down and (bowl, speed) across, spin across and
-    inertia ratio up in each; colour the best same-order pair's flat/Lie ratio (log), text the ratio (= for a
+    inertia ratio up in each; colour the best twin pair's flat/Lie ratio (log), text the ratio (= for a
     tie) and the cheapest method, a marker where the cheapest is a Lie-group method."""
     if not cells(report):
         raise figures.NothingToPlot("the report has no regime section")
@@ -332,9 +336,9 @@ def heat_map(report, target, metric=rp.DEFAULT_METRIC, results=None):
     ticks = [v for v in (0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100)
              if abs(math.log10(v)) <= span + 1e-12]
     bar.set_ticks([math.log10(v) for v in ticks], labels=[f"{v:g}" for v in ticks])
-    bar.set_label("flat / Lie time, best same-order pair (above 1: Lie cheaper)", fontsize=8)
+    bar.set_label("flat / Lie time, best twin pair (above 1: Lie cheaper)", fontsize=8)
     fig.suptitle(f"Regime map at {metric} error {target:.0e}: text = ratio (=: a tie, the repeats' range holds 1) "
-                 "and cheapest method (▲: a Lie-group method); grey: no same-order pair reached it", fontsize=9)
+                 "and cheapest method (▲: a Lie-group method); grey: no twin pair reached it", fontsize=9)
     return fig
 
 
@@ -382,7 +386,7 @@ def border_figure(report, metric=rp.DEFAULT_METRIC, results=None):
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("|ω0| / Ω: the ball's rotation rate over the bowl's frequency (∞: drawn at the right)")
-    ax.set_ylabel("flat / Lie time, best same-order pair")
+    ax.set_ylabel("flat / Lie time, best twin pair")
     ax.set_title(f"Regime border at {metric} error: above 1 the Lie method is cheaper", fontsize=9)
     ax.legend(fontsize=7, loc="upper left")
     return fig

@@ -8,6 +8,7 @@ treat "not measured" uniformly.
 """
 import json
 import contextlib
+import dataclasses
 import math
 
 import numpy as np
@@ -133,12 +134,58 @@ def unique(items):
 
 # -- sections ------------------------------------------------------------------
 
+@dataclasses.dataclass(frozen=True)
+class Run:
+    """One entry of the report's `runs` (docs/formats.md, "A run") as a record.
+
+    The method's facts and the run's setting, status and cost are fields
+    (a number the report leaves null is NaN); `entry` is the report's object
+    itself, for what the accessors below read from it (the errors, the
+    timing samples) and the sections one reader needs (drift,
+    reversibility). Made by runs(), never by hand.
+    """
+    scene: str
+    integrator: str
+    family: str | None
+    adaptive: bool
+    status: str
+    on_group: bool
+    declared_order: int | None
+    tableau: str | None
+    controller: str | None
+    h: float
+    rtol: float
+    atol: float
+    rhs_evals: float
+    stop_time: float
+    message: str
+    entry: dict = dataclasses.field(repr=False, compare=False)
+
+    @classmethod
+    def of(cls, entry):
+        return cls(scene=entry["scene"], integrator=entry["integrator"], family=entry.get("family"),
+                   adaptive=bool(entry["adaptive"]), status=entry["status"], on_group=bool(entry.get("on_group")),
+                   declared_order=entry.get("declared_order"), tableau=entry.get("tableau") or None,
+                   controller=entry.get("controller"), h=num(entry.get("h")), rtol=num(entry.get("rtol")),
+                   atol=num(entry.get("atol")), rhs_evals=num(entry.get("rhs_evals")),
+                   stop_time=num(entry.get("stop_time")), message=entry.get("message") or "", entry=entry)
+
+
 def runs(report, scene=None, adaptive=None):
+    """The runs as Run records, in the report's order; those of one scene, or of one adaptivity, when given."""
     out = section_entries(report, "runs")
     if scene is not None:
         out = [r for r in out if r["scene"] == scene]
     if adaptive is not None:
         out = [r for r in out if bool(r["adaptive"]) == adaptive]
+    return [Run.of(r) for r in out]
+
+
+def by_integrator(records):
+    """{integrator: its runs (or entries of another section)}, in order of first appearance."""
+    out = {}
+    for r in records:
+        out.setdefault(r.integrator if isinstance(r, Run) else r["integrator"], []).append(r)
     return out
 
 
@@ -163,21 +210,23 @@ def tested_h(entry):
 
 def scenes(report):
     """Every scene the report mentions, in order of first appearance."""
-    names = [r["scene"] for r in runs(report)]
+    names = [r.scene for r in runs(report)]
     names += [d["scene"] for d in drift_runs(report)]
     names += [s["scene"] for s in stable_steps(report)]
     return unique(names)
 
 
 def integrators(entries):
-    """Integrator names of some runs, in order of first appearance."""
-    return unique(e["integrator"] for e in entries)
+    """Integrator names of some runs (Run records or another section's entries), in order of first appearance."""
+    return list(by_integrator(entries))
 
 
 def families(report):
     """{integrator: family} over every section."""
     out = {}
-    for entry in runs(report) + drift_runs(report) + stable_steps(report) + section_entries(report, "horizon.runs"):
+    for run in runs(report):
+        out.setdefault(run.integrator, run.family)
+    for entry in drift_runs(report) + stable_steps(report) + section_entries(report, "horizon.runs"):
         out.setdefault(entry["integrator"], entry.get("family"))
     return out
 
@@ -194,7 +243,7 @@ def floor(report, scene):
     ref = reference(report, scene)
     value = num(ref.get("error")) if ref else math.nan
     if not math.isfinite(value):
-        floors = [num((r.get("error") or {}).get("floor")) for r in runs(report, scene)]
+        floors = [num((r.entry.get("error") or {}).get("floor")) for r in runs(report, scene)]
         floors = [f for f in floors if math.isfinite(f)]
         value = max(floors) if floors else 0.0
     return value
@@ -224,38 +273,39 @@ def errors_read(kind):
 
 
 def error(run, component=DEFAULT_METRIC):
-    return num((run.get(_error_key) or {}).get(component))
+    """A Run's error in a component (or "worst"), as errors_read chose: at t_end or the largest over the run."""
+    return num((run.entry.get(_error_key) or {}).get(component))
 
 
 def below_floor(run, component=DEFAULT_METRIC):
-    return component in ((run.get(_error_key) or {}).get("below_floor") or [])
+    return component in ((run.entry.get(_error_key) or {}).get("below_floor") or [])
 
 
 def wall(run):
-    return num((run.get("wall_s") or {}).get("median"))
+    """A Run's wall time, the median over its timed repeats."""
+    return num((run.entry.get("wall_s") or {}).get("median"))
 
 
 def samples(run):
-    raw = (run.get("wall_s") or {}).get("samples") or []
+    raw = (run.entry.get("wall_s") or {}).get("samples") or []
     return np.array([num(s) for s in raw if math.isfinite(num(s))], dtype=float)
 
 
 def ok(run):
-    return run.get("status") == "ok"
+    return run.status == "ok"
 
 
 def tolerance(run):
-    return num(run.get("rtol"))
+    return run.rtol
 
 
 def setting(run, digits=6):
     """The run's step size or tolerances, as text (its place in a sweep)."""
-    if run.get("adaptive"):
-        rtol, atol = num(run.get("rtol")), num(run.get("atol"))
-        if math.isfinite(atol) and atol != rtol:
-            return f"rtol={rtol:.{digits}g} atol={atol:.{digits}g}"
-        return f"tol={rtol:.{digits}g}"
-    return f"h={num(run.get('h')):.{digits}g}"
+    if run.adaptive:
+        if math.isfinite(run.atol) and run.atol != run.rtol:
+            return f"rtol={run.rtol:.{digits}g} atol={run.atol:.{digits}g}"
+        return f"tol={run.rtol:.{digits}g}"
+    return f"h={run.h:.{digits}g}"
 
 
 # -- orders --------------------------------------------------------------------

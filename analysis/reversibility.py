@@ -15,13 +15,13 @@ def largest_defects(report, scene):
     """{integrator: (largest worst defect over its runs with a measured defect, h there)}, in run order."""
     largest = {}
     for r in rp.runs(report, scene, adaptive=False):
-        d = r.get("reversibility") or {}
+        d = r.entry.get("reversibility") or {}
         worst = rp.num(d.get("worst"))
         if d.get("status") != "ok" or not math.isfinite(worst):
             continue
-        name = r["integrator"]
+        name = r.integrator
         if name not in largest or worst > largest[name][0]:
-            largest[name] = (worst, rp.num(r.get("h")))
+            largest[name] = (worst, r.h)
     return largest
 
 

@@ -78,10 +78,9 @@ def tolerance_section(report):
               "intercept is log10 of the error at tolerance 1. \"step order\": the slope of log10 worst error "
               "against log10 mean step (t_end / steps), the observed order beside the declared one.", ""]
     declared = {}
-    for r in report["runs"]:
-        if r.get("adaptive"):
-            text = (r.get("peer") or {}).get("declared_order_text")
-            declared[(r["scene"], r["integrator"])] = text or str(r.get("declared_order", "—"))
+    for r in rp.runs(report, adaptive=True):
+        text = (r.entry.get("peer") or {}).get("declared_order_text")
+        declared[(r.scene, r.integrator)] = text or (str(r.declared_order) if r.declared_order is not None else "—")
 
     def step_order(f):
         s = f.get("step_order") or {}
@@ -156,8 +155,7 @@ def failures_section(report):
     rows = []
     for r in rp.runs(report):
         if not rp.ok(r):
-            rows.append([r["scene"], r["integrator"], rp.setting(r), r["status"],
-                         md.fmt(rp.num(r.get("stop_time"))), r.get("message") or ""])
+            rows.append([r.scene, r.integrator, rp.setting(r), r.status, md.fmt(r.stop_time), r.message])
     for d in rp.drift_runs(report):
         if d.get("status", "ok") != "ok":
             rows.append([d["scene"], d["integrator"] + " (drift run)", f"h={rp.num(d.get('h')):.6g}",
@@ -211,7 +209,7 @@ def failure_counts(report):
     """'N ok, M diverged, ...' over the runs: every status named as the runner wrote it."""
     counts = {}
     for r in rp.runs(report):
-        counts[r.get("status", "?")] = counts.get(r.get("status", "?"), 0) + 1
+        counts[r.status] = counts.get(r.status, 0) + 1
     return ", ".join(f"{n} {s}" for s, n in sorted(counts.items(), key=lambda x: (x[0] != "ok", -x[1])))
 
 

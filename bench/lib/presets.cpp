@@ -105,17 +105,22 @@ SweepSpec preset(const std::string& name) {
     s.horizon = horizon_study(10'000'000);
   } else if (name == "regime") {
     // the regime map (docs/usage.md, "The regime study"): generated scenes,
-    // flat and Lie methods at each of orders 4 (two a side), 5 and 8, steps
+    // each Lie method beside its geometry twin (the same tableau, controller
+    // and norm: rk4 / rkmk4, rk-dp54-adaptive / rkmk-dp54-adaptive,
+    // rk-f78-adaptive / rkmk-f78-adaptive), beside them rk4-projected and
+    // cg4a, and odeint's dopri5 and fehlberg78 as library comparisons; steps
     // and tolerances fine enough to read each at 1e-4, 1e-6 and 1e-9
     s.regime = default_regime_grid();
     s.integrators = {"rk4",
                      "rk4-projected",
                      "rkmk4",
                      "cg4a",
-                     "odeint-dopri5-adaptive",
+                     "rk-dp54-adaptive",
                      "rkmk-dp54-adaptive",
-                     "odeint-fehlberg78-adaptive",
-                     "rkmk-f78-adaptive"};
+                     "rk-f78-adaptive",
+                     "rkmk-f78-adaptive",
+                     "odeint-dopri5-adaptive",
+                     "odeint-fehlberg78-adaptive"};
     s.hs = powers_of_two(1, 10);
     s.tols = {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
     s.repeats = 3;

@@ -12,6 +12,7 @@ import unittest
 import numpy as np
 
 from analysis import compare
+from analysis import report as rp
 from tests.analysis import synthetic as syn
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -96,8 +97,8 @@ class CompareReports(unittest.TestCase):
     def test_a_slowdown_of_one_method_is_found_there_only(self):
         b = syn.slowed(self.a, 2.0, integrator="rkmk4")
         keys = {key for key, kind, _ in compare.compare_reports(self.a, b)["changes"]}
-        mine = [r for r in self.a["runs"] if r["integrator"] == "rkmk4"]
-        self.assertEqual(keys, {(r["scene"], r["integrator"], compare.rp.setting(r, 12)) for r in mine}
+        mine = rp.by_integrator(rp.runs(self.a))["rkmk4"]
+        self.assertEqual(keys, {(r.scene, r.integrator, rp.setting(r, 12)) for r in mine}
                          | {("all scenes", "rkmk4", f"{len(mine)} runs")})
 
     def test_timing_noise_is_not_change(self):
@@ -117,7 +118,7 @@ class CompareReports(unittest.TestCase):
             w = run["wall_s"]
             w["samples"] = [w["median"] * (1 + 0.001 * k) for k in (-2, -1, 0, 1, 2)]
         b = syn.slowed(a, 1.03)
-        ratio, p, changed = compare.time_change(a["runs"][0], b["runs"][0])
+        ratio, p, changed = compare.time_change(rp.runs(a)[0], rp.runs(b)[0])
         self.assertLess(p, compare.ALPHA)
         self.assertFalse(changed)
         self.assertEqual(compare.compare_reports(a, b)["changes"], [])
@@ -264,7 +265,8 @@ class Comparable(unittest.TestCase):
 
 
 def timed(samples):
-    return {"wall_s": {"samples": list(samples), "median": float(np.median(samples))}}
+    return rp.Run.of({"scene": "plane", "integrator": "rk4", "adaptive": False, "status": "ok", "h": 0.1,
+                      "wall_s": {"samples": list(samples), "median": float(np.median(samples))}})
 
 
 class TimeChange(unittest.TestCase):

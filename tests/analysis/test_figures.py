@@ -75,7 +75,7 @@ class FiguresOfSyntheticReport(unittest.TestCase):
         for scene in syn.SCENES:
             fig = self.figures[f"convergence-{scene}.png"]
             axes = [ax for ax in fig.axes if ax.get_lines()]
-            self.assertEqual(len(axes), 2)  # contact point and rotation
+            self.assertEqual(len(axes), len(syn.COMPONENTS))  # a panel per error component of the report
             for ax in axes:
                 lines = labelled_lines(ax)
                 self.assertEqual(len(lines), len(syn.FIXED))
@@ -86,7 +86,8 @@ class FiguresOfSyntheticReport(unittest.TestCase):
 
     def test_convergence_legend_shows_the_observed_orders(self):
         fig = self.figures["convergence-valley-sideways.png"]
-        contact, rotation = [ax for ax in fig.axes if ax.get_lines()]
+        panels = [ax for ax in fig.axes if ax.get_lines()]
+        rotation = panels[syn.COMPONENTS.index("rotation")]
         labels = {line.get_label().split()[0]: line.get_label() for line in labelled_lines(rotation)}
         self.assertIn("p = 3.00", labels["rkmk4-seminar"])
         self.assertIn("p = 4.00", labels["rkmk4"])
@@ -122,9 +123,10 @@ class FiguresOfSyntheticReport(unittest.TestCase):
     def test_pareto_choice(self):
         # a beats b at every cost: a is the family's best; the front drops dominated points
         self.assertEqual(figures_precision.pareto_front([(1, 1e-2), (2, 1e-3), (3, 1e-2), (4, 1e-5)]), [0, 1, 3])
-        runs = [{"integrator": n, "adaptive": False, "status": "ok", "rhs_evals": c, "error": {"worst": e}}
+        runs = [rp.Run.of({"scene": "plane", "integrator": n, "adaptive": False, "status": "ok", "rhs_evals": c,
+                           "error": {"worst": e}})
                 for n, c, e in (("a", 10, 1e-3), ("a", 100, 1e-7), ("b", 20, 1e-3), ("b", 200, 1e-6))]
-        pick = figures_precision.best_of_family(runs, ["b", "a"], lambda r: r["rhs_evals"], "worst", 0.0)
+        pick = figures_precision.best_of_family(runs, ["b", "a"], lambda r: r.rhs_evals, "worst", 0.0)
         self.assertEqual(pick, "a")
 
     def test_tolerance_figure_shows_the_fitted_slopes(self):

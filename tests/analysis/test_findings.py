@@ -13,6 +13,7 @@ import unittest
 
 from analysis import costs, figures_precision, findings, pairs, summary
 from analysis import markdown as md
+from analysis import report as rp
 from tests.analysis import synthetic as syn
 from tests.analysis.test_summary import REL, model_cost
 
@@ -61,18 +62,19 @@ class Findings(unittest.TestCase):
                                                  rel_tol=REL))
 
     def test_pairs_come_from_the_tableau_facts(self):
-        runs = syn.make_report()["runs"]
-        self.assertEqual({(f, lie) for f, lie, _ in pairs.tableau_pairs(runs)}, set(syn.PAIRS))
+        report = syn.make_report()
+        self.assertEqual({(f, lie) for f, lie, _ in pairs.tableau_pairs(rp.runs(report))}, set(syn.PAIRS))
         # a method without a tableau is in no pair, whatever its name says
-        for r in runs:
+        for r in report["runs"]:
             if r["integrator"] == "rkmk8":
                 r["tableau"] = None
-        self.assertNotIn(("odeint-fehlberg78", "rkmk8"), {(f, lie) for f, lie, _ in pairs.tableau_pairs(runs)})
+        self.assertNotIn(("odeint-fehlberg78", "rkmk8"),
+                         {(f, lie) for f, lie, _ in pairs.tableau_pairs(rp.runs(report))})
 
     def test_a_user_tableau_pair_is_paired(self):
         report = syn.make_report()
         report["runs"] += as_pair(report, "rk4", "mine", False, "rk") + as_pair(report, "rkmk4", "mine", True, "rkmk")
-        self.assertIn(("rk-mine", "rkmk-mine", "mine"), pairs.tableau_pairs(report["runs"]))
+        self.assertIn(("rk-mine", "rkmk-mine", "mine"), pairs.tableau_pairs(rp.runs(report)))
         text = summary.summary_markdown(report)
         table = md.parse_table(text, "### Same tableau: flat / Lie time ratio")
         rows = [r for r in table if r[2] == "rk-mine / rkmk-mine"]
@@ -104,7 +106,7 @@ class Findings(unittest.TestCase):
         for r in report["runs"]:
             if r["integrator"] == "rkmk4":
                 r["wall_s"]["samples"] = [s * f for s, f in zip(r["wall_s"]["samples"], (1, 2, 1, 1, 1))]
-        runs = [r for r in report["runs"] if r["scene"] == "plane"]
+        runs = rp.runs(report, "plane")
         median, low, high, repeats, _ = pairs.time_ratio(runs, "rk4", "rkmk4", "worst", 0.0, 1e-6)
         a, _ = model_cost("plane", "rk4", "time", 1e-6)
         b, _ = model_cost("plane", "rkmk4", "time", 1e-6)
@@ -148,12 +150,13 @@ class Findings(unittest.TestCase):
 
     def test_best_of_family_is_the_cheapest_over_the_range(self):
         # b has the most points on the family's front, a is cheaper over the accuracy range
-        runs = [{"integrator": n, "adaptive": False, "status": "ok", "rhs_evals": c, "error": {"worst": e}}
+        runs = [rp.Run.of({"scene": "plane", "integrator": n, "adaptive": False, "status": "ok", "rhs_evals": c,
+                           "error": {"worst": e}})
                 for n, c, e in (("a", 10, 1e-2), ("a", 100, 1e-7), ("b", 11, 5e-3), ("b", 12, 2e-3),
                                 ("b", 13, 1e-3), ("b", 5000, 1e-7))]
-        front = figures_precision.pareto_front([(r["rhs_evals"], r["error"]["worst"]) for r in runs])
-        self.assertGreater(sum(1 for i in front if runs[i]["integrator"] == "b"), 1)
-        pick = figures_precision.best_of_family(runs, ["b", "a"], lambda r: r["rhs_evals"], "worst", 0.0)
+        front = figures_precision.pareto_front([(r.rhs_evals, rp.error(r)) for r in runs])
+        self.assertGreater(sum(1 for i in front if runs[i].integrator == "b"), 1)
+        pick = figures_precision.best_of_family(runs, ["b", "a"], lambda r: r.rhs_evals, "worst", 0.0)
         self.assertEqual(pick, "a")
 
 

@@ -9,9 +9,8 @@ from tests.analysis import synthetic as syn
 
 def expected_cost(name, target, scene="valley-sideways"):
     """Median wall time to reach target, straight from the synthetic model (error = a tol^s, cost ~ tol^(-1/q))."""
-    runs = [r for r in syn.make_report()["runs"] if r["scene"] == scene and r["integrator"] == name]
-    points = costs.curve(runs, rp.wall, "contact", syn.SCENES[scene][1])
-    return costs.cost_to_reach(points, target)[0]
+    runs = rp.by_integrator(rp.runs(syn.make_report(), scene))[name]
+    return costs.reach(runs, (target,), "contact", syn.SCENES[scene][1])[target][0]
 
 
 class Frontier(unittest.TestCase):

@@ -72,7 +72,7 @@ class RegimeBorder(unittest.TestCase):
     def test_the_findings_lines(self):
         lines = findings.findings_section(self.report)
         line = next(x for x in lines if x.startswith("- Regime map"))
-        self.assertIn("the Lie side of the best same-order pair is cheaper in 9, the flat side in 9, and 3 are ties "
+        self.assertIn("the Lie side of the best twin pair is cheaper in 9, the flat side in 9, and 3 are ties "
                       "(the repeats' range holds 1) of 21 measured cell × target", line)
         fit = regime.border(self.report, self.results)
         self.assertIn(f"- Regime border: the Lie method pays where |ω0|/Ω > 2 [{fit['low']:.2g}–{fit['high']:.2g}], "

@@ -8,11 +8,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "bench/lib/presets.hpp"
 #include "bench/lib/regime_scenes.hpp"
 #include "bench/lib/report.hpp"
+#include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
 #include "tests/cli_run.hpp"
 
@@ -203,6 +205,31 @@ TEST(RegimePreset, GeneratesItsScenesWithoutAStabilityStudy) {
   const std::vector<SweepScene> scenes = prepare_scenes(spec, false);
   ASSERT_EQ(scenes.size(), 72u + 5u + 4u);  // the grid, then the held-out scenes
   EXPECT_EQ(scenes[5].scene.name, regime_cells(*spec.regime)[5].scene);
+}
+
+// Issue 31: the regime map's pairs differ only in the geometry, so every Lie
+// method of the preset with a tableau has its geometry twin there: a flat
+// method of the same tableau and adaptivity, the suite's own (a library's
+// has its own norm and controller), with the same controller
+// (analysis/pairs.py, geometry_twin).
+TEST(RegimePreset, EveryLieMethodWithATableauHasItsGeometryTwin) {
+  const SweepSpec spec = preset("regime");
+  std::map<std::string, const MethodInfo*> info;
+  for (const auto& m : registry()) info[m->info().name] = &m->info();
+  std::vector<std::string> paired;
+  for (const std::string& name : spec.integrators) {
+    ASSERT_EQ(info.count(name), 1u) << name;
+    const MethodInfo& lie = *info.at(name);
+    if (!lie.on_group || lie.tableau.empty()) continue;
+    const bool twin = std::any_of(spec.integrators.begin(), spec.integrators.end(), [&](const std::string& f) {
+      const MethodInfo& flat = *info.at(f);
+      return !flat.on_group && flat.tableau == lie.tableau && flat.adaptive == lie.adaptive &&
+             flat.controller == lie.controller && flat.family != "odeint" && flat.family != "gsl";
+    });
+    EXPECT_TRUE(twin) << name << " has no geometry twin in the regime preset";
+    paired.push_back(name);
+  }
+  EXPECT_EQ(paired, (std::vector<std::string>{"rkmk4", "rkmk-dp54-adaptive", "rkmk-f78-adaptive"}));
 }
 
 // A small grid through the command line: the report's regime section, and

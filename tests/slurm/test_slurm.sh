@@ -154,7 +154,7 @@ echo "== ok: --only 1 completed the study, equal to the unsharded run"
 
 # 3. the regime study on a small grid: 3 shards merged and plotted equal the unsharded run
 regime=(--preset regime --regime "inertia=1,3;spin=5,50;roughness=0.3;t_end=0.5;bowl=0.1;speed=0.5;held_out=none"
-  --integrators rk4,rkmk4,odeint-dopri5-adaptive,rkmk-dp54-adaptive --h 2^-3..2^-7 --tol 1e-4,1e-6,1e-8,1e-10
+  --integrators rk4,rkmk4,rk-dp54-adaptive,rkmk-dp54-adaptive --h 2^-3..2^-7 --tol 1e-4,1e-6,1e-8,1e-10
   --repeats 1)
 "$rollbench" run "${regime[@]}" --no-finer-steps --out "$tmp/regime-whole.json" >/dev/null 2>&1 || fail "the unsharded regime run failed"
 ROLLBENCH="$rollbench" submit --dir "$tmp/study3" --shards 3 --wait -- "${regime[@]}" \
