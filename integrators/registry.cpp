@@ -18,6 +18,7 @@
 #include "integrators/methods/verner76.hpp"
 #include "integrators/methods/verner98.hpp"
 #include "integrators/steppers/baselines.hpp"
+#include "integrators/steppers/discrete_gradient.hpp"
 #include "integrators/steppers/exp_product.hpp"
 #include "integrators/steppers/explicit_midpoint.hpp"
 #include "integrators/steppers/gauss.hpp"
@@ -103,6 +104,8 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   for (const int stages : {1, 2, 3}) add(gauss_method(stages));
   for (const int order : {4, 6}) add(midpoint_composition(order, false));
   for (const int order : {2, 4, 6}) add(midpoint_composition(order, true));
+  // the discrete-gradient method: energy conserved to rounding
+  add(discrete_gradient_method());
   // --- end commutator-free and Crouch-Grossman ---
 
   // --- odeint --- (Boost.Odeint steppers on the flat view)
