@@ -37,15 +37,17 @@ std::vector<double> step_ladder(int from, int fine_to, int coarse_to) {
 // explicit family at order 4 (rk4 and odeint-rk4: one tableau, two codes)
 // and at order 1 (euler, exp-euler: flat and on the group), and the
 // symmetric implicit methods of orders 2 and 4 on both views (gauss2,
-// lie-gauss2; gauss4, lie-gauss2-tj4).
+// lie-gauss2; gauss4, lie-gauss2-tj4) and the discrete gradient dg2, which
+// conserves the energy by construction.
 HorizonSpec horizon_study(long steps) {
   HorizonSpec h;
   h.enabled = true;
   h.scenes = {"paraboloid",     "paraboloid-chaplygin",     "paraboloid-perturbed", "paraboloid-perturbed-chaplygin",
               "gaussian-hills", "gaussian-hills-chaplygin", "bumpy-long",           "chaplygin-bumpy-long",
               "chaplygin-plane"};
-  h.integrators = {"euler", "exp-euler", "rk4",  "odeint-rk4", "gsl-rk4",    "rk4-projected", "rk4-quaternion",
-                   "rkmk4", "cf4",       "cg4a", "gauss2",     "lie-gauss2", "gauss4",        "lie-gauss2-tj4"};
+  h.integrators = {"euler",          "exp-euler",      "rk4", "odeint-rk4", "gsl-rk4", "rk4-projected",
+                   "rk4-quaternion", "rkmk4",          "cf4", "cg4a",       "gauss2",  "lie-gauss2",
+                   "gauss4",         "lie-gauss2-tj4", "dg2"};
   h.steps = steps;
   return h;
 }
