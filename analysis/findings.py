@@ -91,9 +91,11 @@ def order_lines(report):
              f"inconclusive" + (f" ({why})" if why else "") + ". \"exact\": every error of the ladder on the plateau, "
              "the largest step's too (no order to read, none contradicted); \"too few points\": under 4 in the window; "
              "\"floor\": as few because the runs reached the plateau (100 × the reference's error or 10 × the "
-             "rounding level); \"wide interval\": 95 % half-width above 0.3; \"pre-asymptotic\": the halving "
+             "rounding level); \"failed runs\": as few because the ladder's other runs failed; "
+             "\"wide interval\": 95 % half-width above 0.3; \"pre-asymptotic\": the halving "
              "slopes still move and the ladder's limits were reached; \"no asymptotic range above the plateau\": "
-             "they still move where the plateau begins; \"straddles\": the interval holds declared − 0.2; "
+             "they still move where the plateau begins, and it does not certify; \"straddles\": the "
+             "interval holds declared − 0.2, not certified by the plateau; "
              "\"self-convergence disagrees\": the method against itself reads another slope."]
     lines.append(lower_line(report))
     high = {}

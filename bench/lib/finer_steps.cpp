@@ -34,7 +34,7 @@ std::vector<SweepTask> finer_step_tasks(const SweepSpec& spec, const std::vector
       if (r.h > 0.0 && !(r.h >= smallest)) smallest = r.h;
     }
     const SweepScene& s = scenes[key.first];
-    if (!wants_finer_steps(group_orders(group, s.reference.error))) continue;
+    if (!wants_finer_steps(group_orders(group, {s.reference.error, s.omega_scale}))) continue;
     const double t_end = s.problem.t_end();
     const double h = step_taken(smallest / 2.0, t_end);
     if (!(h > 0.0) || std::ceil(t_end / h - 1e-9) > static_cast<double>(most)) continue;

@@ -4,7 +4,8 @@
 // slopes move and no point reached the plateau, bench/lib/order_fit.hpp),
 // against the reference or by self-convergence, gets a run at half its
 // smallest step; the sweep repeats this, round after round, until no fit
-// wants finer steps, a run would take more than kMaxExtendedSteps, or
+// wants finer steps, a run would take more than kMaxExtendedSteps (2^20:
+// euler's omega on chaplygin-plane needs h = 2^-18, 786432 steps), or
 // kMaxLadderExtensions rounds are done.
 #include <vector>
 
@@ -12,8 +13,8 @@
 
 namespace rb {
 
-inline constexpr long kMaxExtendedSteps = 1L << 18;
-inline constexpr int kMaxLadderExtensions = 6;
+inline constexpr long kMaxExtendedSteps = 1L << 20;
+inline constexpr int kMaxLadderExtensions = 8;
 
 // The runs to add: one per (scene, fixed-step method) of records that wants
 // finer steps and whose half step stays within kMaxExtendedSteps (and the

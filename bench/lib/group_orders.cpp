@@ -7,7 +7,13 @@
 
 namespace rb {
 
-std::array<ComponentOrder, kErrorComponentCount> group_orders(const std::vector<const FitRun*>& group, double floor) {
+double order_ceiling(std::size_t component, double omega_scale) {
+  return kErrorComponents[component].scale == ErrorScale::omega_scale ? kOrderCeiling * omega_scale : kOrderCeiling;
+}
+
+std::array<ComponentOrder, kErrorComponentCount> group_orders(const std::vector<const FitRun*>& group,
+                                                              const OrderScale& scale) {
+  const double floor = scale.floor;
   std::array<ComponentOrder, kErrorComponentCount> out;
   if (group.empty()) return out;
   const FitRun& first = *group.front();
@@ -33,9 +39,10 @@ std::array<ComponentOrder, kErrorComponentCount> group_orders(const std::vector<
     // methods the leading error in R is symmetric, so the rotation angle
     // after projection converges one order faster
     o.declared = c == "rotation" ? first.declared_rotation_order : first.declared_order;
-    o.reference = fit_order(h, e, floor, kOrderCeiling, kOrderWindowPoints, span);
+    const double ceiling = order_ceiling(i, scale.omega_scale);
+    o.reference = fit_order(h, e, floor, ceiling, kOrderWindowPoints, span);
     // no reference, so no floor: rounding alone ends the self-convergence
-    o.self = fit_order(self_h, self_d, 0.0, kOrderCeiling, kOrderWindowPoints, span);
+    o.self = fit_order(self_h, self_d, 0.0, ceiling, kOrderWindowPoints, span);
     o.judgement = judge_order(o.reference, o.self, o.declared);
   }
   return out;

@@ -61,19 +61,20 @@ double local_slope_between(const Points& p, std::size_t i, std::size_t j) {
 
 double local_slope(const Points& p, std::size_t i) { return local_slope_between(p, i, i + 1); }
 
-// The slopes over successive halvings of h from the smallest step up: from
-// each point to the first at about twice its step (within 10 %: at large h
-// the steps taken, t_end / ceil(t_end / h), are off the ladder's values;
-// the slope uses the ratio itself), kHalvingSlopes at most; fewer where the
-// ladder has no such point.
-std::vector<double> halving_slopes(const Points& p) {
+// The local slopes from the smallest step up, each from a point to the
+// first whose step is between lowest and highest times its own (within 10 %:
+// at large h the steps taken, t_end / ceil(t_end / h), are off the ladder's
+// values; the slope uses the ratio itself), kHalvingSlopes at most; fewer
+// where the ladder has no such point. lowest = highest = 2: the halving
+// slopes; lowest sqrt(2): the rung slopes.
+std::vector<double> slopes_over(const Points& p, double lowest, double highest) {
   std::vector<double> slopes;
-  const double octave = std::log10(2.0), slack = std::log10(1.1);
+  const double slack = std::log10(1.1), low = std::log10(lowest) - slack, high = std::log10(highest) + slack;
   std::size_t i = 0;
   while (slopes.size() < static_cast<std::size_t>(kHalvingSlopes)) {
     std::size_t j = i + 1;
-    while (j < p.size() && p[j].first < p[i].first + octave - slack) ++j;
-    if (j == p.size() || p[j].first > p[i].first + octave + slack) break;
+    while (j < p.size() && p[j].first < p[i].first + low) ++j;
+    if (j == p.size() || p[j].first > p[i].first + high) break;
     slopes.push_back(local_slope_between(p, i, j));
     i = j;
   }
@@ -104,9 +105,11 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   bool all_on_plateau = true;
   bool past_ceiling = false;
   int above_ceiling = 0;
+  int failed = 0;
   for (const auto& [step, e] : all) {
     const double plateau = std::max(kFloorMultiple * floor, kRoundingMultiple * kRoundingPerStep * span / step);
     all_on_plateau = all_on_plateau && (!std::isfinite(e) || e <= plateau);
+    if (!std::isfinite(e)) ++failed;
     if (past_ceiling || e > ceiling) {
       past_ceiling = true;
       if (std::isfinite(e)) ++above_ceiling;
@@ -120,11 +123,13 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
   fit.points = static_cast<int>(p.size());
   fit.at_floor = at_floor;
   fit.above_ceiling = above_ceiling;
+  fit.failed = failed;
   fit.smallest_finite = !all.empty() && std::isfinite(all.front().second);
   fit.all_at_plateau = all_on_plateau && at_floor >= kMinOrderPoints;
   if (p.size() < 2) return fit;
 
-  fit.halving_slopes = halving_slopes(p);
+  fit.halving_slopes = slopes_over(p, 2.0, 2.0);
+  fit.rung_slopes = slopes_over(p, std::sqrt(2.0), 2.0);
   fit.asymptotic =
       fit.halving_slopes.size() == static_cast<std::size_t>(kHalvingSlopes) && slopes_agree(fit.halving_slopes);
   const std::size_t min_points = static_cast<std::size_t>(kMinOrderPoints);
@@ -180,18 +185,33 @@ bool wants_finer_steps(const OrderFit& fit, int declared) {
 
 std::string inconclusive_reason(const OrderFit& fit, int declared) {
   if (order_verdict(fit, declared) != "inconclusive") return "";
-  if (fit.points < kMinOrderPoints || !std::isfinite(fit.slope))
-    return fit.at_floor > 0 && fit.points + fit.at_floor >= kMinOrderPoints ? "floor" : "too few points";
+  if (fit.points < kMinOrderPoints || !std::isfinite(fit.slope)) {
+    if (fit.at_floor > 0 && fit.points + fit.at_floor >= kMinOrderPoints) return "floor";
+    // the runs that have an error are too few even with those above the
+    // ceiling, and the rest failed
+    const bool failures = fit.failed > 0 && fit.points + fit.at_floor + fit.above_ceiling < kMinOrderPoints &&
+                          fit.points + fit.failed >= kMinOrderPoints;
+    return failures ? "failed runs" : "too few points";
+  }
   if (!(fit.slope_ci95 <= kMaxHalfWidth)) return "wide interval";
   if (pre_asymptotic(fit)) return fit.at_floor == 0 ? "pre-asymptotic" : "no asymptotic range above the plateau";
   return "straddles";
 }
 
 bool certified_at_plateau(const OrderFit& fit, double bar) {
+  if (fit.at_floor == 0) return false;
+  // two halvings that reach the bar and do not fall towards small steps,
+  // under a window whose interval lies above the bar
   const std::vector<double>& s = fit.halving_slopes;
-  if (fit.at_floor == 0 || s.size() < 2) return false;
-  const bool falling = s[0] < s[1] - std::max(kHalvingAgreement, 0.05 * std::abs(s[1]));
-  return !falling && std::min(s[0], s[1]) >= bar && fit.slope - fit.slope_ci95 >= bar;
+  const bool halvings = s.size() >= 2 && s[0] >= s[1] - std::max(kHalvingAgreement, 0.05 * std::abs(s[1])) &&
+                        std::min(s[0], s[1]) >= bar && fit.slope - fit.slope_ci95 >= bar;
+  // or rungs: the smallest step's rung slope reaches the bar, and none of
+  // the rungs above it lies higher by more than the agreement (a slope
+  // still climbing towards its order as h falls, or level)
+  const std::vector<double>& r = fit.rung_slopes;
+  if (halvings || r.size() < 2 || !(r[0] >= bar)) return halvings;
+  const double highest = *std::max_element(r.begin() + 1, r.end());
+  return r[0] >= highest - std::max(kHalvingAgreement, 0.05 * std::abs(highest));
 }
 
 std::string order_verdict(const OrderFit& fit, int declared) {
@@ -202,7 +222,8 @@ std::string order_verdict(const OrderFit& fit, int declared) {
   if (pre_asymptotic(fit)) return certified_at_plateau(fit, bar) ? "as declared" : "inconclusive";
   if (fit.slope - fit.slope_ci95 >= bar) return "as declared";
   if (fit.slope + fit.slope_ci95 < bar) return "lower";
-  return "inconclusive";
+  // an interval that holds the bar: the plateau may still certify
+  return certified_at_plateau(fit, bar) ? "as declared" : "inconclusive";
 }
 
 OrderJudgement judge_order(const OrderFit& reference, const OrderFit& self, int declared) {

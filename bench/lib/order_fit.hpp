@@ -36,10 +36,16 @@ struct OrderFit {
   // error passes it; smallest_finite: the smallest step's error is finite
   int above_ceiling = 0;
   bool smallest_finite = false;
+  int failed = 0;  // runs of the ladder without a finite error (they failed)
   // the local slopes over successive halvings of h from the smallest step
   // kept up (at most kHalvingSlopes): where they still move, the smallest
   // steps are not yet asymptotic
   std::vector<double> halving_slopes;
+  // the local slopes over successive rungs from the smallest step kept up:
+  // each to the first step at least sqrt(2) and at most 2 times its own
+  // (within 10 %), kHalvingSlopes at most; half octaves where the ladder has
+  // them (the quarter-step part of the default ladder), halvings elsewhere
+  std::vector<double> rung_slopes;
   bool asymptotic = false;  // kHalvingSlopes halving slopes agree (slopes_agree)
   // every step's error is on the plateau (runs that failed have none), at
   // kMinOrderPoints steps or more: the method is exact on this component of
@@ -87,21 +93,28 @@ OrderFit fit_order(const std::vector<double>& h, const std::vector<double>& erro
 // "exact" when every step's error lies on the plateau (all_at_plateau: no
 // order to read, and none contradicted); otherwise
 // "as declared" when the 95 % interval of the slope lies above declared -
-// 0.2, "lower" when it lies below, "inconclusive" when it straddles that,
-// is wider than +-0.3, rests on fewer than kMinOrderPoints points, or when
-// the smallest steps are pre-asymptotic (pre_asymptotic) and the plateau
-// does not bound the order from below (certified_at_plateau).
+// 0.2, "lower" when it lies below, "inconclusive" when it is wider than
+// +-0.3 or rests on fewer than kMinOrderPoints points; where the smallest
+// steps are pre-asymptotic (pre_asymptotic) or the interval straddles
+// declared - 0.2, "as declared" only where the plateau certifies it
+// (certified_at_plateau), "inconclusive" otherwise.
 std::string order_verdict(const OrderFit& fit, int declared);
 
-// A ladder the plateau cut short of kHalvingSlopes agreeing halvings (no
-// finer step can add one) certifies but never condemns: where its two
-// smallest-step halving slopes are both at least bar and the slope does not
-// fall towards small steps (by more than max(kHalvingAgreement, 0.05 p)),
-// and the window's interval lies above bar, the order is at least the
-// declared one down to the plateau. A method that loses its order falls
-// towards small steps; and slopes near the plateau flatten as the
-// reference's error or rounding creeps in, so a low slope there is no
-// evidence of a lower order.
+// A ladder the plateau cut short (some point on the plateau: no finer step
+// can add a halving) certifies but never condemns, in either of two forms:
+// - halvings: its two smallest-step halving slopes are both at least bar,
+//   the slope does not fall towards small steps (s0 >= s1 -
+//   max(kHalvingAgreement, 0.05 s1)), and the window's interval lies above
+//   bar;
+// - rungs: the smallest step's rung slope is at least bar, and no rung slope
+//   above it is higher by more than max(kHalvingAgreement, 0.05 x that
+//   slope): the local slope is level or still climbing towards small steps.
+//   High-order methods reach the plateau within one or two halvings, but
+//   the quarter-step ladder gives them half-octave rungs.
+// Either way the order is at least the declared one down to the plateau.
+// A method that loses its order falls towards small steps; and slopes near
+// the plateau flatten as the reference's error or rounding creeps in, so a
+// low slope there is no evidence of a lower order.
 bool certified_at_plateau(const OrderFit& fit, double bar);
 
 // True when a fit with enough points has not shown its asymptotic range:
@@ -121,7 +134,10 @@ bool wants_finer_steps(const OrderFit& fit, int declared);
 
 // Why a verdict is inconclusive: "too few points" (below kMinOrderPoints in
 // the window, or no fit), "floor" (as few, but only because points reached
-// the plateau: a finer ladder at large h would give them), "wide interval"
+// the plateau: a finer ladder at large h would give them), "failed runs"
+// (as few because the ladder's other runs failed: fewer than
+// kMinOrderPoints finite errors, on the plateau and above the ceiling
+// included), "wide interval"
 // (half-width above 0.3), "pre-asymptotic" (see pre_asymptotic; a finer
 // ladder would decide), "no asymptotic range above the plateau"
 // (pre-asymptotic, and the smallest steps reached the plateau) or

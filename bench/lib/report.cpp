@@ -362,14 +362,12 @@ json fit_tolerances(const std::vector<FitRun>& runs) {
 namespace {
 
 // A fit as a report holds it: the slope with its 95 % interval and window,
-// the halving slopes and whether they agree (asymptotic), null where no
+// the halving and rung slopes, whether the halvings agree (asymptotic), null where no
 // slope was fitted.
 json order_fit_json(const OrderFit& fit) {
-  json j = {{"points", std::max(0, fit.points)},
-            {"at_plateau", fit.at_floor},
-            {"halving_slopes", fit.halving_slopes},
-            {"asymptotic", fit.asymptotic},
-            {"all_at_plateau", fit.all_at_plateau}};
+  json j = {{"points", std::max(0, fit.points)},    {"at_plateau", fit.at_floor},
+            {"halving_slopes", fit.halving_slopes}, {"rung_slopes", fit.rung_slopes},
+            {"asymptotic", fit.asymptotic},         {"all_at_plateau", fit.all_at_plateau}};
   if (!std::isfinite(fit.slope)) {
     j["slope"] = nullptr;
     j["ci95"] = nullptr;
@@ -393,8 +391,7 @@ json fit_orders(const std::vector<FitRun>& runs, const ReferenceFloors& floors) 
     const std::vector<const FitRun*>& group = groups.members.at(key);
     const FitRun& first = *group.front();
     const auto found = floors.find(key.first);
-    const double floor = found != floors.end() ? found->second : 0.0;
-    const auto components = group_orders(group, floor);
+    const auto components = group_orders(group, found != floors.end() ? found->second : OrderScale{});
     json observed, ci95, fits, self, verdicts, reasons;
     // pass: every component as declared or exact, at least one as declared
     bool lower = false, all_as_declared = true, any_as_declared = false;
@@ -463,7 +460,7 @@ json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes, c
   std::map<std::string, std::string> kind;
   for (const SweepScene& s : scenes) kind[s.scene.name] = s.reference.kind;
   ReferenceFloors floors;
-  for (const SweepScene& s : scenes) floors[s.scene.name] = s.reference.error;
+  for (const SweepScene& s : scenes) floors[s.scene.name] = {s.reference.error, s.omega_scale};
   json run_list = json::array();
   std::vector<FitRun> fit_input;
   for (const RunRecord& r : runs) {
@@ -634,6 +631,9 @@ json merge_reports(const std::vector<json>& shards, const std::vector<std::strin
       // a reference's own error: null where it was not finite
       if (!r.contains("error") || !(r["error"].is_number() || r["error"].is_null()))
         throw InputError(where + ".error is missing or not a number or null", "reports");
+      // omega's ceiling in the order fits
+      if (!r.contains("omega_scale") || !r["omega_scale"].is_number())
+        throw InputError(where + ".omega_scale is missing or not a number", "reports");
       if (std::none_of(references.begin(), references.end(), [&](const json& x) { return x["scene"] == r["scene"]; }))
         references.push_back(r);
     }
@@ -655,7 +655,7 @@ json merge_reports(const std::vector<json>& shards, const std::vector<std::strin
       if (ref["scene"] == r.scene && std::none_of(ordered_refs.begin(), ordered_refs.end(),
                                                   [&](const json& x) { return x["scene"] == ref["scene"]; })) {
         ordered_refs.push_back(ref);
-        floors[r.scene] = as_number(ref["error"]);
+        floors[r.scene] = {as_number(ref["error"]), as_number(ref["omega_scale"])};
       }
   merged["options"] = base_options;
   merged["options"]["shard"] = {0, 1};

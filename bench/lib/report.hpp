@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bench/lib/fit_run.hpp"
+#include "bench/lib/group_orders.hpp"
 #include "bench/lib/horizon.hpp"
 #include "bench/lib/stability.hpp"
 #include "bench/lib/sweep.hpp"
@@ -28,9 +29,9 @@ nlohmann::json errors_json(const RunErrors& errors, const std::string& reference
 // A run's entry of "runs" (docs/formats.md, "A run").
 nlohmann::json run_json(const RunRecord& record, const std::string& reference_kind);
 
-// Each scene's reference floor (its own error): errors below it are
-// counted at the floor, never fitted.
-using ReferenceFloors = std::map<std::string, double>;
+// Each scene's reference floor (its own error: errors below it are counted
+// at the floor, never fitted) and omega_scale (omega's ceiling).
+using ReferenceFloors = std::map<std::string, OrderScale>;
 
 // The "orders" entries for the runs of a report: per (scene, integrator) of a
 // fixed-step method, the slope of log error on log h per component with its

@@ -109,6 +109,10 @@ TEST(MergeShards, ARunTheFitsCannotReadNamesItsFileAndKey) {
   no_scene["references"] = {{{"error", 1e-12}}};
   EXPECT_EQ(merge_error({empty_shard(0, 2), no_scene}),
             "'reports': the report 'shard report 1': references[0].scene is missing or not a string");
+  json no_scale = empty_shard(1, 2);
+  no_scale["references"] = {{{"scene", "bowl"}, {"error", 1e-12}}};
+  EXPECT_EQ(merge_error({empty_shard(0, 2), no_scale}),
+            "'reports': the report 'shard report 1': references[0].omega_scale is missing or not a number");
 }
 
 // The merged report lists the components as a sweep's does.

@@ -7,9 +7,13 @@
 // confirms the reference's slope.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include "bench/lib/fit_run.hpp"
+#include "bench/lib/group_orders.hpp"
 #include "bench/lib/order_fit.hpp"
 #include "bench/lib/self_convergence.hpp"
 #include "tests/bench/error_series.hpp"
@@ -129,6 +133,98 @@ TEST(OrderVerdictsBothWays, TwoHalvingsThePlateauEndsCertifyButNeverCondemn) {
   EXPECT_FALSE(certified_at_plateau(lost, 7.8));
 }
 
+// An order-8 method whose slope climbs towards 8 as h falls (h^8 / (1 +
+// 30 h^3)), cut by a plateau at 1e-9 (floor 1e-11) below h = 0.088: its
+// halvings read 7.81 and 7.00, which certify nothing, but the quarter-step
+// ladder's half-octave rungs read 7.89, 7.72, 7.33 from the smallest step
+// up: climbing towards small steps, the smallest above the bar.
+double climbing_to_eight(double x) { return std::pow(x, 8) / (1.0 + 30.0 * std::pow(x, 3)); }
+
+TEST(OrderVerdictsBothWays, RungsThatClimbToThePlateauCertifyButNeverCondemn) {
+  const std::vector<double> h = ladder(12);
+  const OrderFit fit = fit_order(h, errors(h, climbing_to_eight), 1e-11, 0.1, 8, 1.0);
+  EXPECT_GT(fit.at_floor, 0);
+  EXPECT_FALSE(fit.asymptotic);
+  ASSERT_EQ(fit.halving_slopes.size(), 3u);
+  EXPECT_LT(fit.halving_slopes[1], 7.8);  // the halvings alone certify nothing
+  ASSERT_EQ(fit.rung_slopes.size(), 3u);
+  EXPECT_GE(fit.rung_slopes[0], 7.8);
+  EXPECT_LT(fit.rung_slopes[2], fit.rung_slopes[0]);  // climbing towards small steps
+  EXPECT_TRUE(certified_at_plateau(fit, 7.8));
+  EXPECT_EQ(order_verdict(fit, 8), "as declared");
+  // declared 9: the rungs bound nothing above 7.9, and they never condemn
+  EXPECT_EQ(order_verdict(fit, 9), "inconclusive");
+  EXPECT_EQ(inconclusive_reason(fit, 9), "no asymptotic range above the plateau");
+  // an order lost towards small steps just above the plateau (2e-8 h
+  // added): the smallest rung falls under the bar; never as declared
+  const OrderFit lost =
+      fit_order(h, errors(h, [](double x) { return climbing_to_eight(x) + 2e-8 * x; }), 1e-11, 0.1, 8, 1.0);
+  ASSERT_GE(lost.rung_slopes.size(), 2u);
+  EXPECT_LT(lost.rung_slopes[0], 7.8);
+  EXPECT_FALSE(certified_at_plateau(lost, 7.8));
+  EXPECT_NE(order_verdict(lost, 8), "as declared");
+  // rungs that fall towards small steps by more than the agreement (8.97,
+  // 8.64, 8.38 down to the plateau for h^8 + 30 h^10) certify nothing, though
+  // all lie above the bar: the slope may fall further below the plateau
+  const OrderFit falling =
+      fit_order(h, errors(h, [](double x) { return std::pow(x, 8) + 30.0 * std::pow(x, 10); }), 1e-11, 0.1, 8, 1.0);
+  ASSERT_GE(falling.rung_slopes.size(), 2u);
+  EXPECT_GT(*std::max_element(falling.rung_slopes.begin() + 1, falling.rung_slopes.end()),
+            falling.rung_slopes[0] + 0.4);
+  EXPECT_FALSE(certified_at_plateau(falling, 7.8));
+}
+
+// A settled fit whose interval, [3.65, 3.85], straddles declared 4 - 0.2.
+OrderFit straddling(int at_floor, std::vector<double> rungs) {
+  OrderFit fit;
+  fit.points = 5;
+  fit.asymptotic = true;
+  fit.slope = 3.75;
+  fit.slope_ci95 = 0.1;
+  fit.at_floor = at_floor;
+  fit.halving_slopes = {rungs.front()};
+  fit.rung_slopes = std::move(rungs);
+  return fit;
+}
+
+TEST(OrderVerdictsBothWays, AStraddlingIntervalIsDecidedOnlyByThePlateau) {
+  // cf4's omega on chaplygin-valley: 3.92, 3.83, 3.60 from the smallest
+  // step up, the next step on the plateau: certified
+  EXPECT_EQ(order_verdict(straddling(1, {3.92, 3.83, 3.60}), 4), "as declared");
+  // the same slopes with nothing on the plateau: a finer step decides
+  const OrderFit open = straddling(0, {3.92, 3.83, 3.60});
+  EXPECT_EQ(order_verdict(open, 4), "inconclusive");
+  EXPECT_EQ(inconclusive_reason(open, 4), "straddles");
+  EXPECT_TRUE(wants_finer_steps(open, 4));
+  // the smallest rung under the bar (slopes falling towards small steps):
+  // still straddles, and never lower
+  const OrderFit falling = straddling(1, {3.60, 3.83, 3.92});
+  EXPECT_EQ(order_verdict(falling, 4), "inconclusive");
+  EXPECT_EQ(inconclusive_reason(falling, 4), "straddles");
+}
+
+TEST(OrderVerdictsBothWays, OmegasCeilingScalesWithTheLargestOmega) {
+  // euler's omega on bowl-3d: |omega| up to 13 rad/s, error 700 h rad/s; at
+  // 0.1 rad/s only the steps from 2^-13 down stay under the ceiling
+  std::size_t omega = 0, contact = 0;
+  for (std::size_t i = 0; i < kErrorComponentCount; ++i) {
+    if (std::string(kErrorComponents[i].name) == "omega") omega = i;
+    if (std::string(kErrorComponents[i].name) == "contact") contact = i;
+  }
+  EXPECT_DOUBLE_EQ(order_ceiling(omega, 13.0), 1.3);
+  EXPECT_DOUBLE_EQ(order_ceiling(contact, 13.0), 0.1);  // lengths and angles keep 0.1
+  const std::vector<double> h = ladder(15);
+  const auto e = errors(h, [](double x) { return 700.0 * x; });
+  const OrderFit absolute = fit_order(h, e, 1e-13, 0.1, 8, 5.0);
+  EXPECT_EQ(absolute.points, 3);
+  EXPECT_EQ(inconclusive_reason(absolute, 1), "too few points");
+  const OrderFit scaled = fit_order(h, e, 1e-13, order_ceiling(omega, 13.0), 8, 5.0);
+  EXPECT_GE(scaled.points, 4);
+  EXPECT_EQ(order_verdict(scaled, 1), "as declared");
+  // the wider window condemns as readily: order 1 declared 2 is lower
+  EXPECT_EQ(order_verdict(scaled, 2), "lower");
+}
+
 OrderFit no_fit() {
   OrderFit fit;
   fit.slope = NAN;
@@ -198,6 +294,27 @@ TEST(OrderVerdictsBothWays, ALadderEndingAboveTheCeilingAsksForFinerSteps) {
   const std::vector<double> three(h.end() - 3, h.end());
   EXPECT_FALSE(
       wants_finer_steps(fit_order(three, errors(three, [](double x) { return 40.0 * x; }), 1e-13, 0.1, 8, 1.0), 1));
+}
+
+TEST(OrderVerdictsBothWays, TooFewPointsBecauseRunsFailedSaySo) {
+  // euler on chaplygin-valley: every run of the ladder leaves the chart
+  const std::vector<double> h = ladder(10);
+  const std::vector<double> none(h.size(), NAN);
+  const OrderFit all_failed = fit_order(h, none, 1e-13, 0.1, 8, 5.0);
+  EXPECT_EQ(all_failed.failed, static_cast<int>(h.size()));
+  EXPECT_EQ(order_verdict(all_failed, 1), "inconclusive");
+  EXPECT_EQ(inconclusive_reason(all_failed, 1), "failed runs");
+  EXPECT_FALSE(wants_finer_steps(all_failed, 1));
+  // three errors at the smallest steps, the larger steps failed
+  auto three = none;
+  for (std::size_t i = h.size() - 3; i < h.size(); ++i) three[i] = 1e-3 * h[i];
+  EXPECT_EQ(inconclusive_reason(fit_order(h, three, 1e-13, 0.1, 8, 5.0), 1), "failed runs");
+  // with two errors above the ceiling among them, the ladder ends before its
+  // errors come under the ceiling: too few points, and finer steps decide
+  three[h.size() - 4] = 0.5, three[h.size() - 5] = 0.6;
+  const OrderFit short_ladder = fit_order(h, three, 1e-13, 0.1, 8, 5.0);
+  EXPECT_EQ(inconclusive_reason(short_ladder, 1), "too few points");
+  EXPECT_TRUE(wants_finer_steps(short_ladder, 1));
 }
 
 TEST(OrderVerdictsBothWays, SelfConvergenceConfirmsTheReferenceSlopeOrWithholdsTheVerdict) {
