@@ -122,6 +122,15 @@ struct Cost {
   problem.lie_rhs(R, z, omega, dz, m);
   cost.note(m);
 }
+// The same on the model's code path General (RollingBall::has_inertia()),
+// fixed at compile time by a stepper that chose it once per run.
+template <bool General>
+[[gnu::always_inline]] inline void stage_lie_rhs_on_path(const Problem& problem, const Mat3& R, const double* z,
+                                                         double* omega, double* dz, Cost& cost) {
+  ModelMargins m;
+  problem.model().lie_rhs_on_path<General>(R, z, omega, dz, m);
+  cost.note(m);
+}
 
 // The states at the recorded output times, in order.
 struct Trajectory {

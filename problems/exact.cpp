@@ -25,7 +25,7 @@ ExactState PlaneSolution::at(double t) const {
   const Vec3 u = r_ * omega0_.cross(Vec3::UnitZ());
   s.alpha = alpha0_ + t * u.head<2>();
   s.omega = omega0_;
-  s.R = so3_exp(t * omega0_) * R0_;
+  s.R = so3_exp(t * omega0_, ExpSeries::below_0_1_rad) * R0_;
   s.has_rotation = true;
   return s;
 }
@@ -54,7 +54,7 @@ ExactState InclineSolution::at(double t) const {
   s.alpha = c.head<2>() - r_ * N_.head<2>();
   s.omega = omega0_ + t * b_;
   s.has_rotation = has_rotation_;
-  if (has_rotation_) s.R = so3_exp(t * omega0_ + (0.5 * t * t) * b_) * R0_;
+  if (has_rotation_) s.R = so3_exp(t * omega0_ + (0.5 * t * t) * b_, ExpSeries::below_0_1_rad) * R0_;
   return s;
 }
 
@@ -110,7 +110,7 @@ ExactState BowlPendulumSolution::at(double t) const {
   ExactState s;
   s.alpha = rho_ * std::sin(th) * e_;
   s.omega = ratio * theta_dot(t) * e2;
-  s.R = so3_exp(ratio * (th - theta0_) * e2) * R0_;
+  s.R = so3_exp(ratio * (th - theta0_) * e2, ExpSeries::below_0_1_rad) * R0_;
   s.has_rotation = true;
   return s;
 }

@@ -139,6 +139,23 @@ class RollingBall {
     margins = margins_of(k);
   }
 
+  // Whether the ball has principal moments (the general code path of
+  // kinematics), equal or not.
+  bool has_inertia() const { return general_; }
+  // The Lie view with margins on the code path chosen at compile time
+  // (General = has_inertia()): a stepper that picks it once per run has a
+  // ball with inertia's evaluation inlined into its stages as well, the
+  // kinematics in registers instead of an out-of-line call (callgrind, a
+  // stage of rkmk-verner7-adaptive on chaplygin-bumpy-long: see
+  // docs/performance.md).
+  template <bool General>
+  [[gnu::always_inline]] void lie_rhs_on_path(const Mat3& R, const double* z, double* omega, double* dz,
+                                              ModelMargins& margins) const {
+    const Kinematics<double> k = kinematics<General>(R, z);
+    store_lie(k, omega, dz);
+    margins = margins_of(k);
+  }
+
   // Flat view: y' = F(y) for y in R^14 (R row-major, v, alpha); R' = hat(omega) R.
   template <class T>
   [[gnu::always_inline]] void flat_rhs(const T* y, T* dy) const {

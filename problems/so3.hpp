@@ -16,27 +16,55 @@ inline Mat3 hat(const Vec3& w) {
   return W;
 }
 
-// exp(hat(z)) = I + (sin t / t) hat(z) + ((1 - cos t) / t^2) hat(z)^2, t = |z|.
-// Below t^2 = 1e-2 (t < 0.1 rad, every step of a converged run) the Taylor
-// series to t^8 is used: its truncation error is below 3e-18 relative, under
-// rounding, and it avoids the sincos call, the square root and the division
-// (about a tenth of an RKMK4 step), as well as the cancellation in 1 - cos t.
-// Written entry by entry with hat(z)^2 = z z^T - t^2 I: no 3x3 product
-// (callgrind: 160 -> 78 instructions a call), the same matrix to rounding.
-// Always inlined: the stage loops that form exp(U) R_n called it out of line.
-[[gnu::always_inline]] inline Mat3 so3_exp(const Vec3& z) {
-  const double x = z.x(), y = z.y(), w = z.z();
-  const double xx = x * x, yy = y * y, ww = w * w;
-  const double t2 = xx + yy + ww;
-  double a, b;
+// Which angles exp's Taylor polynomials cover (the rest calls sincos):
+// t < 0.1 only, as every exp did until 2026-12-05 (the closed-form
+// references of problems/exact.cpp keep their bits so), or t < 1 (the steps:
+// an adaptive step of the Chaplygin scenes turns the ball by 0.1-0.3 rad).
+enum class ExpSeries { below_0_1_rad, below_1_rad };
+
+// a = sin t / t and b = (1 - cos t) / t^2 at t^2 = |z|^2 (exp's and its
+// derivative's coefficients). Below t^2 = 1e-2 (t < 0.1 rad) the Taylor
+// series to t^8 (truncation below 3e-18 relative); from there to t^2 = 1
+// (series = below_1_rad) to t^16 (truncation below 1e-17 relative: t^18 /
+// 19! < 8.3e-18 and t^18 / 20! < 4.2e-19, under half an ulp of a >= sin 1
+// and b >= 1 - cos 1): no sincos, square root or division, and no
+// cancellation in 1 - cos t. The same numbers to rounding either way.
+[[gnu::always_inline]] inline void so3_exp_coefficients(double t2, double& a, double& b,
+                                                        ExpSeries series = ExpSeries::below_1_rad) {
   if (t2 < 1e-2) [[likely]] {
     a = 1.0 + t2 * (-1.0 / 6.0 + t2 * (1.0 / 120.0 + t2 * (-1.0 / 5040.0 + t2 * (1.0 / 362880.0))));
     b = 0.5 + t2 * (-1.0 / 24.0 + t2 * (1.0 / 720.0 + t2 * (-1.0 / 40320.0 + t2 * (1.0 / 3628800.0))));
+  } else if (series == ExpSeries::below_1_rad && t2 < 1.0) {
+    a = 1.0 + t2 * (-1.0 / 6.0 +
+                    t2 * (1.0 / 120.0 +
+                          t2 * (-1.0 / 5040.0 +
+                                t2 * (1.0 / 362880.0 +
+                                      t2 * (-1.0 / 39916800.0 +
+                                            t2 * (1.0 / 6227020800.0 +
+                                                  t2 * (-1.0 / 1307674368000.0 + t2 * (1.0 / 355687428096000.0))))))));
+    b = 0.5 + t2 * (-1.0 / 24.0 +
+                    t2 * (1.0 / 720.0 +
+                          t2 * (-1.0 / 40320.0 +
+                                t2 * (1.0 / 3628800.0 +
+                                      t2 * (-1.0 / 479001600.0 +
+                                            t2 * (1.0 / 87178291200.0 + t2 * (-1.0 / 20922789888000.0 +
+                                                                              t2 * (1.0 / 6402373705728000.0))))))));
   } else {
     const double t = std::sqrt(t2);
     a = std::sin(t) / t;
     b = (1.0 - std::cos(t)) / t2;
   }
+}
+
+// exp(hat(z)) = I + a hat(z) + b hat(z)^2 (so3_exp_coefficients), written
+// entry by entry with hat(z)^2 = z z^T - t^2 I: no 3x3 product (callgrind:
+// 160 -> 78 instructions a call), the same matrix to rounding.
+// Always inlined: the stage loops that form exp(U) R_n called it out of line.
+[[gnu::always_inline]] inline Mat3 so3_exp(const Vec3& z, ExpSeries series = ExpSeries::below_1_rad) {
+  const double x = z.x(), y = z.y(), w = z.z();
+  const double xx = x * x, yy = y * y, ww = w * w;
+  double a, b;
+  so3_exp_coefficients(xx + yy + ww, a, b, series);
   const double bxy = b * x * y, bxw = b * x * w, byw = b * y * w;
   const double ax = a * x, ay = a * y, aw = a * w;
   Mat3 E;
@@ -94,13 +122,27 @@ enum class DexpinvKind {
 inline constexpr double kDexpinvMaxAngle = 2.0 * M_PI * (15.0 / 16.0);
 
 // The coefficient of u x (u x w) in the closed-form dexpinv at t^2 = |u|^2:
-// (1 - (t/2) cot(t/2)) / t^2 = sum_n |B_2n| t^(2n-2) / (2n)!. Below t^2 = 1e-2
-// the series to t^8 (truncation below 1e-19 relative; the closed form loses
-// up to 1e-11 relative there to cancellation), so that no step of a
-// converged run calls tan. NaN from kDexpinvMaxAngle on.
+// (1 - (t/2) cot(t/2)) / t^2 = sum_n |B_2n| t^(2n-2) / (2n)!, each term
+// about t^2 / (2 pi)^2 of the one before. Below t^2 = 1e-2 the series to
+// t^8 (truncation below 1e-19 relative; the closed form loses up to 1e-11
+// relative there to cancellation); from there to t^2 = 1 to t^18 (truncation
+// below 7e-17 relative), so that no step of a converged run, nor an adaptive
+// step that turns the ball by up to 1 rad, calls tan. The same number to
+// rounding as the closed form. NaN from kDexpinvMaxAngle on.
 inline double dexpinv_coefficient(double t2) {
   if (t2 < 1e-2) [[likely]]
     return 1.0 / 12.0 + t2 * (1.0 / 720.0 + t2 * (1.0 / 30240.0 + t2 * (1.0 / 1209600.0 + t2 * (1.0 / 47900160.0))));
+  if (t2 < 1.0)
+    return 1.0 / 12.0 +
+           t2 * (1.0 / 720.0 +
+                 t2 * (1.0 / 30240.0 +
+                       t2 * (1.0 / 1209600.0 +
+                             t2 * (1.0 / 47900160.0 +
+                                   t2 * (691.0 / 1307674368000.0 +
+                                         t2 * (1.0 / 74724249600.0 +
+                                               t2 * (3617.0 / 10670622842880000.0 +
+                                                     t2 * (43867.0 / 5109094217170944000.0 +
+                                                           t2 * (174611.0 / 802857662698291200000.0)))))))));
   if (!(t2 < kDexpinvMaxAngle * kDexpinvMaxAngle)) return std::numeric_limits<double>::quiet_NaN();
   const double t = std::sqrt(t2);
   return (1.0 - 0.5 * t / std::tan(0.5 * t)) / t2;

@@ -37,8 +37,9 @@ struct SparseWeights {
 };
 
 // The pair's steps for drive_adaptive (integrators/driver.hpp): an error
-// estimate for the controller, which decides.
-template <bool Dense>
+// estimate for the controller, which decides. General: the ball has
+// inertia (RollingBall::has_inertia()), so that its evaluation is inlined.
+template <bool Dense, bool General>
 class LieStepper {
  public:
   static constexpr bool dense_output = Dense;
@@ -69,7 +70,7 @@ class LieStepper {
   // step is kept in w_new_ for accept.
   double try_step(double /*t*/, double h, Cost& cost) {
     if (!have_first_) {
-      stage_lie_rhs(*problem_, R_, z_.data(), omega_first_.data(), g_first_.data(), cost);
+      stage_lie_rhs_on_path<General>(*problem_, R_, z_.data(), omega_first_.data(), g_first_.data(), cost);
       ++cost.rhs_evals;
       have_first_ = true;
     }
@@ -98,7 +99,7 @@ class LieStepper {
     } else {
       // its margins stay in cost.watch for the driver's look after the
       // next attempt, whose first stage this is
-      stage_lie_rhs(*problem_, R_, z_.data(), omega_first_.data(), g_first_.data(), cost);
+      stage_lie_rhs_on_path<General>(*problem_, R_, z_.data(), omega_first_.data(), g_first_.data(), cost);
       ++cost.rhs_evals;
     }
     if constexpr (Dense) dense_outputs(t, h, w_new_, cost);
@@ -156,11 +157,12 @@ class LieStepper {
     const ZState z = z_n + w.tail<kZSize>();
     Vec3 omega;
     ZState g;
-    if (problem_->model().anisotropic()) {
-      stage_lie_rhs(*problem_, Mat3(so3_exp(w.head<3>()) * R_n), z.data(), omega.data(), g.data(), cost);
+    if (General && problem_->model().anisotropic()) {
+      stage_lie_rhs_on_path<General>(*problem_, Mat3(so3_exp(w.head<3>()) * R_n), z.data(), omega.data(), g.data(),
+                                     cost);
       ++cost.exp_evals;
     } else {
-      stage_lie_rhs(*problem_, R_n, z.data(), omega.data(), g.data(), cost);
+      stage_lie_rhs_on_path<General>(*problem_, R_n, z.data(), omega.data(), g.data(), cost);
     }
     ++cost.rhs_evals;
     set_stage(i, dexpinv(w.head<3>(), omega), g);
@@ -277,17 +279,19 @@ std::unique_ptr<Integrator> rkmk_adaptive(Tableau tableau, std::string name, con
                   .description = description_of(tableau, controller, use_dense),
                   .tableau = tableau.name(),
                   .on_group = true};
-  return adaptive_method(std::move(info),
-                         [tableau = std::move(tableau), use_dense](const Problem& problem, const RunOptions& options,
-                                                                   const Tolerances& tol, auto&& drive) {
-                           const std::vector<double> outputs = output_times_of(problem, options);
-                           if (use_dense) {
-                             LieStepper<true> stepper(problem, tableau, tol, outputs);
-                             return drive(stepper);
-                           }
-                           LieStepper<false> stepper(problem, tableau, tol, outputs);
-                           return drive(stepper);
-                         });
+  return adaptive_method(
+      std::move(info), [tableau = std::move(tableau), use_dense](const Problem& problem, const RunOptions& options,
+                                                                 const Tolerances& tol, auto&& drive) {
+        const std::vector<double> outputs = output_times_of(problem, options);
+        // the four steppers: dense output or not, a ball with inertia or not
+        auto run = [&]<bool Dense, bool General>() {
+          LieStepper<Dense, General> stepper(problem, tableau, tol, outputs);
+          return drive(stepper);
+        };
+        const bool general = problem.model().has_inertia();
+        if (use_dense) return general ? run.template operator()<true, true>() : run.template operator()<true, false>();
+        return general ? run.template operator()<false, true>() : run.template operator()<false, false>();
+      });
 }
 
 }  // namespace rb

@@ -11,13 +11,42 @@ Vec3 dexp(const Vec3& u, const Vec3& x) {
   return x + (1 - std::cos(t)) / (t * t) * u.cross(x) + (t - std::sin(t)) / (t * t * t) * u.cross(u.cross(x));
 }
 
-TEST(SO3, ExpMatchesAngleAxisOnBothSidesOfTheSeriesSwitch) {
-  // the series switch is at t = 0.1
-  for (double t : {1e-9, 1e-4, 1e-3, 0.0999, 0.1, 0.1001, 1.0, 3.0}) {
+TEST(SO3, ExpMatchesAngleAxisOnBothSidesOfTheSeriesSwitches) {
+  // the short series ends at t = 0.1, the long one at t = 1
+  for (double t : {1e-9, 1e-4, 1e-3, 0.0999, 0.1, 0.1001, 0.3, 0.9999, 1.0, 1.0001, 3.0}) {
     const Vec3 axis = Vec3(1, -2, 0.5).normalized();
     const Mat3 expected = Eigen::AngleAxisd(t, axis).toRotationMatrix();
     EXPECT_LT((so3_exp(t * axis) - expected).norm(), 2e-16 * 8) << t;
   }
+}
+
+// sin t / t and (1 - cos t) / t^2 in long double, by their closed forms
+// (no cancellation to speak of from t = 0.1 on in long double's 64 bits)
+void exact_exp_coefficients(long double t, long double& a, long double& b) {
+  a = std::sin(t) / t;
+  b = (1.0L - std::cos(t)) / (t * t);
+}
+
+TEST(SO3, ExpCoefficientsAreExactToRoundingOnTheLongSeries) {
+  // from t = 0.1 to 1 the steps' exp takes the series to t^16 instead of
+  // sincos: within an ulp or two of the long-double values, and of the
+  // closed form's matrix, which the short series (the references') keeps
+  for (double t = 0.1; t < 1.0; t += 0.0173) {
+    double a = 0.0, b = 0.0;
+    so3_exp_coefficients(t * t, a, b);
+    long double ea = 0.0L, eb = 0.0L;
+    exact_exp_coefficients(t, ea, eb);
+    EXPECT_LT(std::abs(a - static_cast<double>(ea)), 2.3e-16 * static_cast<double>(ea)) << t;
+    EXPECT_LT(std::abs(b - static_cast<double>(eb)), 2.3e-16 * static_cast<double>(eb)) << t;
+    const Vec3 z = t * Vec3(0.3, -0.8, 0.52).normalized();
+    EXPECT_LT((so3_exp(z) - so3_exp(z, ExpSeries::below_0_1_rad)).cwiseAbs().maxCoeff(), 4.5e-16) << t;
+  }
+  // below t = 0.1 both take the same series: the same bits
+  const Vec3 small(0.05, -0.03, 0.02);
+  EXPECT_EQ(so3_exp(small), so3_exp(small, ExpSeries::below_0_1_rad));
+  // from t = 1 on both call sincos: the same bits
+  const Vec3 large(0.9, -0.6, 0.4);
+  EXPECT_EQ(so3_exp(large), so3_exp(large, ExpSeries::below_0_1_rad));
 }
 
 TEST(SO3, LogInvertsExp) {
@@ -63,18 +92,24 @@ TEST(SO3, DexpinvSeriesBranchMatchesTheClosedFormAtTheSwitch) {
 }
 
 TEST(SO3, DexpinvCoefficientIsExactToRoundingOnBothBranches) {
-  // the series below t = 0.1, the closed form above: within 2 ulp of the
-  // long-double value everywhere up to the pole guard, NaN from there on
+  // the series below t = 1 (to t^8 below 0.1, to t^18 from there), the
+  // closed form above: within 2 ulp of the long-double value everywhere up
+  // to the pole guard, NaN from there on
   for (double t = 1e-4; t < kDexpinvMaxAngle; t *= 1.1) {
     const double c = dexpinv_coefficient(t * t);
     const double exact = static_cast<double>(exact_dexpinv_coefficient(t));
     // the closed form's cancellation costs up to ~12 eps / t^2 relative
-    const double allowed = t < 0.1 ? 4.5e-16 : 4.5e-16 + 4e-15 / (t * t);
+    const double allowed = t < 1.0 ? 4.5e-16 : 4.5e-16 + 4e-15 / (t * t);
     EXPECT_LT(std::abs(c - exact), allowed * exact) << t;
   }
   EXPECT_TRUE(std::isnan(dexpinv_coefficient(kDexpinvMaxAngle * kDexpinvMaxAngle)));
   EXPECT_TRUE(std::isnan(dexpinv_coefficient(std::numeric_limits<double>::quiet_NaN())));
   EXPECT_DOUBLE_EQ(dexpinv_coefficient(0.0), 1.0 / 12.0);
+  // and on both sides of the long series' end at t = 1
+  for (double t : {1.0 - 1e-9, 1.0, 1.0 + 1e-9}) {
+    const double exact = static_cast<double>(exact_dexpinv_coefficient(t));
+    EXPECT_LT(std::abs(dexpinv_coefficient(t * t) - exact), 4.5e-15 * exact) << t;
+  }
 }
 
 TEST(SO3, TruncatedSeriesAgreesToFourthOrderAndSeminarDoesNot) {
