@@ -149,11 +149,12 @@ TEST(CfCg, ExponentialsCountedPerStep) {
       EXPECT_EQ(run.cost.dexpinv_evals, m.name() == "rkmk4-cayley" ? 3 * run.cost.steps : 0) << e.name;
     }
     // the description states the counts exponentials_per_step finds
-    if (m.family() == "cf" || m.family() == "cg")
+    if (m.family() == "cf" || m.family() == "cg") {
       EXPECT_NE(m.description().find(std::to_string(e.anisotropic) + " exponentials a step (" +
                                      std::to_string(e.homogeneous) + " for a homogeneous ball)"),
                 std::string::npos)
           << e.name << ": " << m.description();
+    }
   }
 }
 
