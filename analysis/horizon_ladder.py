@@ -144,9 +144,10 @@ def cost_figure(report, palette):
         entries = horizon.runs(report, scene)
         for r in entries:
             x, y = cpu_seconds(r), relative_energy_error(r)
-            if not (math.isfinite(x) and x > 0):
+            stopped = r.get("status", "ok") != "ok"
+            # a run without a time, or one that ran but recorded no finite error, has no point to draw
+            if not (math.isfinite(x) and x > 0) or not (stopped or math.isfinite(y)):
                 continue
-            stopped = not math.isfinite(y)
             style = dict(palette.style(r["integrator"]), linestyle="none")
             if stopped:
                 style["marker"] = "x"
