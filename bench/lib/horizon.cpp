@@ -1,18 +1,17 @@
 #include "bench/lib/horizon.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <limits>
 #include <mutex>
-#include <thread>
 
 #include "bench/lib/drift.hpp"
 #include "bench/lib/integrate_safely.hpp"
 #include "bench/lib/order_fit.hpp"
+#include "bench/lib/run_on_threads.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
@@ -263,19 +262,11 @@ HorizonResults run_horizon(const SweepSpec& spec, const std::function<void(const
     records[k] = std::move(r);
   };
   // the runs are independent and each is timed by its own thread's CPU
-  // clock, so they share --jobs threads; runs that fork (isolated plug-ins)
-  // run alone afterwards, as in the sweep (bench/lib/sweep.cpp says why)
-  std::vector<std::size_t> in_pool, forking;
-  for (std::size_t k = 0; k < mine.size(); ++k)
-    (find_integrator(hs.integrators[mine[k] % hs.integrators.size()]).forks() ? forking : in_pool).push_back(k);
-  std::atomic<std::size_t> next{0};
-  std::vector<std::thread> pool;
-  for (int j = 0; j < std::max(1, spec.jobs); ++j)
-    pool.emplace_back([&] {
-      for (std::size_t n = next++; n < in_pool.size(); n = next++) run_one(in_pool[n]);
-    });
-  for (std::thread& t : pool) t.join();
-  for (const std::size_t k : forking) run_one(k);
+  // clock, so they share --jobs threads (run_on_threads)
+  run_on_threads(
+      mine.size(), spec.jobs,
+      [&](std::size_t k) { return find_integrator(hs.integrators[mine[k] % hs.integrators.size()]).forks(); }, run_one,
+      [](std::size_t) {});
   out.runs = std::move(records);
   return out;
 }

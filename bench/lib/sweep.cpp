@@ -2,16 +2,15 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <sstream>
-#include <thread>
 
 #include "bench/lib/drift.hpp"
 #include "bench/lib/finer_steps.hpp"
 #include "bench/lib/integrate_safely.hpp"
 #include "bench/lib/regime_scenes.hpp"
+#include "bench/lib/run_on_threads.hpp"
 #include "bench/lib/trajectory_csv.hpp"
 #include "integrators/driver.hpp"
 #include "integrators/registry.hpp"
@@ -334,36 +333,17 @@ std::vector<RunRecord> run_tasks(const SweepSpec& spec, const std::vector<SweepS
     progress(progress_line(phase, done, total, std::chrono::duration<double>(clock::now() - since).count(), unit));
   };
 
-  // accuracy: parallel; a shared counter hands out tasks. Runs that fork
-  // (isolated plug-ins) wait until the pool has ended and run on this
-  // thread alone: a child forked while another thread holds a lock (the
-  // allocator's, a static's guard) can wait on it forever
-  std::vector<std::size_t> in_pool, forking;
-  for (std::size_t i = 0; i < tasks.size(); ++i)
-    (find_integrator(tasks[i].integrator).forks() ? forking : in_pool).push_back(i);
-  std::atomic<std::size_t> next{0}, done{0};
-  auto worker = [&] {
-    for (std::size_t n = next++; n < in_pool.size(); n = next++) {
-      const std::size_t i = in_pool[n];
-      records[i] = run_task(scenes[tasks[i].scene], tasks[i], spec.max_steps);
-      ++done;
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int j = 0; j < std::max(1, spec.jobs); ++j) pool.emplace_back(worker);
+  // accuracy: parallel (run_on_threads; isolated plug-ins alone afterwards)
   auto last_report = clock::now();
-  while (done < in_pool.size()) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    if (clock::now() - last_report > std::chrono::seconds(2)) {
-      report("accuracy", done, tasks.size(), start);
-      last_report = clock::now();
-    }
-  }
-  for (auto& t : pool) t.join();
-  for (const std::size_t i : forking) {
-    records[i] = run_task(scenes[tasks[i].scene], tasks[i], spec.max_steps);
-    ++done;
-  }
+  run_on_threads(
+      tasks.size(), spec.jobs, [&](std::size_t i) { return find_integrator(tasks[i].integrator).forks(); },
+      [&](std::size_t i) { records[i] = run_task(scenes[tasks[i].scene], tasks[i], spec.max_steps); },
+      [&](std::size_t done) {
+        if (clock::now() - last_report > std::chrono::seconds(2)) {
+          report("accuracy", done, tasks.size(), start);
+          last_report = clock::now();
+        }
+      });
 
   // timing: one run at a time on this thread, in rounds: round k times
   // repeat k of every run still within its budget, so that a slow spell of
