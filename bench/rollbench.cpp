@@ -2,6 +2,7 @@
 // turns errors into messages and exit codes (0 ok, 2 bad input, 3 a run that
 // stopped early).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -28,11 +29,17 @@ namespace {
 
 int run_list() {
   std::printf("integrators (name, family, declared order with the embedded one in parentheses, adaptive):\n");
+  // columns as wide as their widest entry, so a long family name never shifts the row
+  int name_width = 0, family_width = 0;
+  for (const auto& integrator : rb::registry()) {
+    name_width = std::max(name_width, static_cast<int>(integrator->info().name.size()));
+    family_width = std::max(family_width, static_cast<int>(integrator->info().family.size()));
+  }
   for (const auto& integrator : rb::registry()) {
     const rb::MethodInfo m = integrator->info();
     std::string order = std::to_string(m.declared_order);
     if (m.embedded_order > 0) order += "(" + std::to_string(m.embedded_order) + ")";
-    std::printf("  %-28s %-12s %5s  %-8s %s\n", m.name.c_str(), m.family.c_str(), order.c_str(),
+    std::printf("  %-*s %-*s %5s  %-8s %s\n", name_width, m.name.c_str(), family_width, m.family.c_str(), order.c_str(),
                 m.adaptive ? "adaptive" : "fixed", m.description.c_str());
   }
   std::printf("\nscenes (in %s):\n", RB_SCENE_DIR);

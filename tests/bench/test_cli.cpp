@@ -40,6 +40,25 @@ TEST(Cli, ListShowsEveryRegisteredIntegratorAndTheScenes) {
   EXPECT_NE(o.out.find("bowl-planar"), std::string::npos);
 }
 
+TEST(Cli, ListAlignsItsColumnsForTheLongestNameAndFamily) {
+  const Outcome o = rollbench("list");
+  ASSERT_EQ(o.code, 0) << o.err;
+  // the column "fixed"/"adaptive" starts at one offset on every integrator row,
+  // whatever the longest name or family ("discrete-gradient") is
+  std::size_t column = std::string::npos;
+  int rows = 0;
+  for (const std::string& line : lines_of(o.out)) {
+    if (line.empty()) break;
+    std::size_t at = line.find("  fixed ");
+    if (at == std::string::npos) at = line.find("  adaptive ");
+    if (at == std::string::npos) continue;
+    if (column == std::string::npos) column = at;
+    EXPECT_EQ(at, column) << line;
+    ++rows;
+  }
+  EXPECT_EQ(rows, static_cast<int>(registry().size()));
+}
+
 TEST(Cli, TrajectoryWritesTheCsvOfFormats) {
   const fs::path csv = temp_file("ok.csv");
   const Outcome o =
