@@ -27,8 +27,20 @@ WINDOW_COLOUR = "#eeeeee"
 
 
 def runs(report, scene=None):
-    """The horizon runs of a report ([] for a report without the study), of one scene when given."""
+    """The horizon study's runs of a report ([] for a report without the study), of one scene when given: the
+    runs at the study's step, whose growth the figures and findings read (not the price runs)."""
+    return [r for r in all_runs(report, scene) if coarsening(r) == 1]
+
+
+def all_runs(report, scene=None):
+    """Every horizon run, the price runs at k h (`coarsening` k > 1) too, of one scene when given."""
     return [r for r in rp.section_entries(report, "horizon.runs") if scene is None or r["scene"] == scene]
+
+
+def coarsening(run):
+    """k of a price run of steps / k steps of k h; 1 for the study's own run (and reports older than them)."""
+    k = run.get("coarsening")
+    return int(k) if isinstance(k, (int, float)) and k >= 1 else 1
 
 
 def scenes(report):

@@ -160,9 +160,10 @@ def failures_section(report):
         if d.get("status", "ok") != "ok":
             rows.append([d["scene"], d["integrator"] + " (drift run)", f"h={rp.num(d.get('h')):.6g}",
                          d["status"], md.fmt(rp.num(d.get("stop_time"))), d.get("message") or ""])
-    for d in horizon.runs(report):
+    for d in horizon.all_runs(report):
         if d.get("status", "ok") != "ok":
-            rows.append([d["scene"], d["integrator"] + " (horizon run)", f"h={rp.num(d.get('h')):.6g}",
+            price = f", {horizon.coarsening(d)} h" if horizon.coarsening(d) > 1 else ""
+            rows.append([d["scene"], d["integrator"] + f" (horizon run{price})", f"h={rp.num(d.get('h')):.6g}",
                          d["status"], md.fmt(rp.num(d.get("stop_time"))), d.get("message") or ""])
     if not rows:
         return lines + ["No run failed.", ""]

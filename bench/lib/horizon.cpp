@@ -230,12 +230,23 @@ long parse_horizon_steps(const std::string& text) {
   return static_cast<long>(v);
 }
 
+std::vector<long> price_coarsenings(const HorizonSpec& spec) {
+  std::vector<long> ks;
+  for (const long k : spec.coarsenings)
+    if (k > 1 && spec.steps % k == 0 && std::find(ks.begin(), ks.end(), k) == ks.end()) ks.push_back(k);
+  return ks;
+}
+
 HorizonResults run_horizon(const SweepSpec& spec, const std::function<void(const std::string&)>& progress) {
   HorizonResults out;
   const HorizonSpec& hs = spec.horizon;
   if (!hs.enabled) return out;
   const auto start = std::chrono::steady_clock::now();
-  const std::size_t total = hs.scenes.size() * hs.integrators.size();
+  // one block of scenes x methods per step: the study's h, then each price run's k h
+  std::vector<long> coarsenings = {1};
+  for (const long k : price_coarsenings(hs)) coarsenings.push_back(k);
+  const std::size_t block = hs.scenes.size() * hs.integrators.size();
+  const std::size_t total = block * coarsenings.size();
   std::vector<Problem> problems;
   for (const std::string& scene : hs.scenes) problems.push_back(make_problem(load_scene(scene)));
   // this shard's runs by their index in the full study, scenes outer
@@ -246,16 +257,22 @@ HorizonResults run_horizon(const SweepSpec& spec, const std::function<void(const
   std::mutex report_lock;
   std::size_t done = 0;
   const auto run_one = [&](std::size_t k) {
-    const std::size_t index = mine[k];
-    const std::string& name = hs.integrators[index % hs.integrators.size()];
-    HorizonRecord r = horizon_run(problems[index / hs.integrators.size()], find_integrator(name), hs);
+    const std::size_t index = mine[k], in_block = index % block;
+    const long coarsening = coarsenings[index / block];
+    HorizonSpec run_spec = hs;
+    run_spec.h = hs.h * static_cast<double>(coarsening);
+    run_spec.steps = hs.steps / coarsening;
+    const std::string& name = hs.integrators[in_block % hs.integrators.size()];
+    HorizonRecord r = horizon_run(problems[in_block / hs.integrators.size()], find_integrator(name), run_spec);
     r.index = index;
+    r.coarsening = coarsening;
     std::string invariants;
     for (const InvariantSeries& s : r.invariants)
       invariants += ", " + s.name + " p = " + fixed(s.fit.p, "%.2f") + (s.fit.at_rounding ? " (rounding)" : "");
     const std::lock_guard<std::mutex> hold(report_lock);
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    progress("horizon: " + name + " on " + r.scene + ": " + std::string(status_name(r.status)) + ", energy p = " +
+    const std::string at = coarsening == 1 ? "" : " at " + std::to_string(coarsening) + " h";
+    progress("horizon: " + name + " on " + r.scene + at + ": " + std::string(status_name(r.status)) + ", energy p = " +
              fixed(r.energy_fit.p, "%.2f") + ", rotation defect p = " + fixed(r.defect_fit.p, "%.2f") +
              (r.defect_fit.at_rounding ? " (rounding)" : "") + invariants + ", " + fixed(r.cpu_s, "%.2f") + " s CPU (" +
              progress_line("horizon", ++done, mine.size(), elapsed) + ")");
@@ -368,6 +385,7 @@ json horizon_json(const HorizonResults& results) {
                     {"family", r.method.family},
                     {"declared_order", r.method.declared_order},
                     {"on_group", r.method.on_group},
+                    {"coarsening", r.coarsening},
                     {"h", r.h},
                     {"steps_planned", r.steps},
                     {"t_end", r.t_end},
@@ -405,6 +423,7 @@ json horizon_options_json(const HorizonSpec& s) {
           {"fit_decades", s.fit_decades},
           {"dense_outputs", s.dense_outputs},
           {"asymptotic_spread", s.asymptotic_spread},
+          {"coarsenings", price_coarsenings(s)},
           {"same_series_rise", kSameSeriesRise}};
 }
 

@@ -58,6 +58,7 @@ struct HorizonRecord {
   std::string scene;
   bool r_feeds_back = false;
   MethodInfo method;
+  long coarsening = 1;  // 1: the study's run; k: a price run of steps / k steps of k h
   double h = 0.0;
   long steps = 0;  // planned; the run ends at t_end = steps h
   double t_end = 0.0;
@@ -117,9 +118,14 @@ void check_horizon(const HorizonSpec& spec);
 // throws InputError (key "horizon-steps") otherwise.
 long parse_horizon_steps(const std::string& text);
 
+// The coarsenings k of HorizonSpec::coarsenings that give price runs: those
+// above 1 that divide steps, without repeats, in the given order.
+std::vector<long> price_coarsenings(const HorizonSpec& spec);
+
 // This shard's runs (index % count == shard index), scenes outer, methods
-// inner, in that order, computed on spec.jobs threads; progress gets a line
-// per run, as each ends.
+// inner, in that order, the study's runs first and then each coarsening's
+// price runs in the same order, computed on spec.jobs threads; progress gets
+// a line per run, as each ends.
 HorizonResults run_horizon(const SweepSpec& spec, const std::function<void(const std::string&)>& progress);
 
 // The report's "horizon" section (docs/formats.md#the-horizon-study).

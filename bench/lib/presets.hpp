@@ -63,6 +63,12 @@ struct HorizonSpec {
   // the fit is asymptotic where its early and late half-window slopes
   // differ by at most this
   double asymptotic_spread = 0.15;
+  // the price runs: each scene and method again over the same horizon in
+  // steps / k steps of k h, for each k here that divides steps, so that the
+  // cost of staying under an energy target is read off more than one step
+  // (a method that stays under at h may stay under at 4 h for a quarter of
+  // the price); no exponent is read from them
+  std::vector<long> coarsenings = {4, 16};
 };
 
 struct SweepSpec {

@@ -54,10 +54,33 @@ class Ladder(unittest.TestCase):
         self.assertIn("energy bounded for the symmetric gauss2 (p = 0.02)", para)
         self.assertIn("growing for 1 other method (p = 1.00)", para)
         # rk4's largest error 1e-7 t over t = 78 s is 6.5e-6 of the 1.2 J scale: over 1e-6; gauss2's is not
-        self.assertIn("cheapest under 1e-06 relative energy error: gauss2, 2.5 s CPU (10.0 × rk4's 0.25 s)", para)
+        self.assertIn("cheapest under 1e-06 relative energy error: gauss2, 2.5 s CPU (10.0 × rk4's 0.25 s at h)",
+                      para)
         hills = next(line for line in self.lines if line.startswith("- Ladder, gaussian-hills "))
         self.assertIn("growing for the symmetric gauss2 (p = 0.70)", hills)
-        self.assertIn("no method keeps the relative energy error under 1e-06", hills)
+        self.assertIn("no run keeps the relative energy error under 1e-06 (steps h)", hills)
+
+    def test_a_price_run_at_a_coarser_step_is_priced_but_not_fitted(self):
+        report = dict(self.report)
+        runs = list(report["horizon"]["runs"])
+        # gauss2 at 4 h stays under the target for a quarter of the price; rk4 at 4 h grows faster and is no
+        # second "other method"
+        gauss4h = dict(next(r for r in runs if r["integrator"] == "gauss2"), index=len(runs), coarsening=4,
+                       cpu_s=0.7)
+        gauss4h["energy_error"] = [16 * e for e in gauss4h["energy_error"]]
+        rk4_4h = dict(next(r for r in runs if r["integrator"] == "rk4"), index=len(runs) + 1, coarsening=4,
+                      cpu_s=0.07)
+        report["horizon"] = {"runs": runs + [gauss4h, rk4_4h]}
+        para = next(line for line in ladder.finding_lines(report) if line.startswith("- Ladder, paraboloid "))
+        self.assertIn("cheapest under 1e-06 relative energy error: gauss2 at 4 h, 0.7 s CPU (2.8 × rk4's 0.25 s at h)",
+                      para)
+        self.assertIn("growing for 1 other method (p = 1.00)", para)
+        # over the target at 4 h (a hundred times more error): the study's own run is the price again
+        gauss4h["energy_error"] = [100 * e for e in gauss4h["energy_error"]]
+        para = next(line for line in ladder.finding_lines(report) if line.startswith("- Ladder, paraboloid "))
+        self.assertIn("gauss2, 2.5 s CPU", para)
+        hills = next(line for line in ladder.finding_lines(report) if line.startswith("- Ladder, gaussian-hills "))
+        self.assertIn("no run keeps the relative energy error under 1e-06 (steps h)", hills)
 
     def test_the_last_line_names_where_symmetry_kept_the_energy_and_where_not(self):
         self.assertEqual(self.lines[-1], "- Reversibility and the energy (bounded: p ≤ 0.25 or rounding): symmetry "

@@ -87,9 +87,11 @@ TEST(HorizonFit, SampleStepsAreLogSpacedWholeSteps) {
   EXPECT_DOUBLE_EQ(rounding_level(10000, 2.0), 100.0 * 2.220446049250313e-16 * 100.0 * 2.0);
 }
 
+// the study's runs alone: the price runs have tests of their own
 HorizonSpec small_study(long steps) {
   HorizonSpec s = preset("default").horizon;
   s.steps = steps;
+  s.coarsenings.clear();
   return s;
 }
 
@@ -348,15 +350,52 @@ TEST(HorizonCli, OptionsRunTheStudyIntoTheReportAndShardsMerge) {
   const nlohmann::json j = nlohmann::json::parse(slurp(merged));
   EXPECT_EQ(j.at("options").at("horizon").at("steps"), 2000);
   const nlohmann::json& runs = j.at("horizon").at("runs");
-  ASSERT_EQ(runs.size(), 3u);
+  // the study's three runs, then the price runs at 4 h and 16 h (both divide 2000)
+  EXPECT_EQ(j.at("options").at("horizon").at("coarsenings"), nlohmann::json::array({4, 16}));
+  ASSERT_EQ(runs.size(), 9u);
   const char* names[] = {"rk4", "rkmk4", "cf4"};
-  for (std::size_t i = 0; i < 3; ++i) {
+  const long coarsening[] = {1, 4, 16};
+  for (std::size_t i = 0; i < 9; ++i) {
+    const long k = coarsening[i / 3];
     EXPECT_EQ(runs[i].at("index"), i);
-    EXPECT_EQ(runs[i].at("integrator"), names[i]);
-    EXPECT_EQ(runs[i].at("steps"), 2000);
+    EXPECT_EQ(runs[i].at("integrator"), names[i % 3]);
+    EXPECT_EQ(runs[i].at("coarsening"), k);
+    EXPECT_EQ(runs[i].at("steps"), 2000 / k);
+    EXPECT_DOUBLE_EQ(runs[i].at("h").get<double>(), k / 128.0);
+    EXPECT_DOUBLE_EQ(runs[i].at("t_end").get<double>(), 2000 / 128.0) << "one horizon for every run";
     EXPECT_EQ(runs[i].at("t").size(), runs[i].at("rotation_defect").size());
     EXPECT_TRUE(runs[i].at("fit").at("rotation_defect").contains("p"));
   }
+}
+
+// A price run is the study's run at k h over the same horizon: only the k
+// that divide the steps are run, and the run is that of a study of steps / k
+// steps of k h.
+TEST(Horizon, PriceRunsCoverTheSameHorizonAtCoarserSteps) {
+  HorizonSpec spec = preset("default").horizon;
+  spec.steps = 1000;  // 16 does not divide it
+  EXPECT_EQ(price_coarsenings(spec), std::vector<long>({4}));
+  spec.coarsenings = {4, 1, 4, 0, -2, 8};
+  EXPECT_EQ(price_coarsenings(spec), std::vector<long>({4, 8}));
+  spec.coarsenings = {8};
+  spec.scenes = {"paraboloid"};
+  spec.integrators = {"rk4"};
+  SweepSpec sweep;
+  sweep.horizon = spec;
+  const HorizonResults results = run_horizon(sweep, [](const std::string&) {});
+  ASSERT_EQ(results.runs.size(), 2u);
+  const HorizonRecord& price = results.runs[1];
+  EXPECT_EQ(price.coarsening, 8);
+  EXPECT_EQ(price.steps, 125);
+  EXPECT_EQ(price.cost.steps, 125);
+  EXPECT_DOUBLE_EQ(price.t_end, results.runs[0].t_end);
+  HorizonSpec alone = spec;
+  alone.h = 8 * spec.h;
+  alone.steps = 125;
+  const HorizonRecord direct = horizon_run(make_problem(load_scene("paraboloid")), find_integrator("rk4"), alone);
+  EXPECT_EQ(price.energy_error, direct.energy_error);
+  // a coarser rk4 step, a larger energy error over the same horizon
+  EXPECT_GT(price.energy_error.back(), results.runs[0].energy_error.back());
 }
 
 // The runs share --jobs threads: every record, its index and its place in
@@ -373,8 +412,8 @@ TEST(HorizonCli, ThreadsGiveTheRecordsOfOneThread) {
   ASSERT_EQ(o.code, 0) << o.err;
   nlohmann::json a = nlohmann::json::parse(slurp(one)).at("horizon").at("runs");
   nlohmann::json b = nlohmann::json::parse(slurp(two)).at("horizon").at("runs");
-  ASSERT_EQ(a.size(), 6u);
-  ASSERT_EQ(b.size(), 6u);
+  ASSERT_EQ(a.size(), 18u);  // the study's 6 runs and the price runs at 4 h and 16 h
+  ASSERT_EQ(b.size(), 18u);
   for (std::size_t i = 0; i < a.size(); ++i) {
     EXPECT_EQ(a[i].at("index"), i);
     EXPECT_GE(b[i].at("cpu_s").get<double>(), 0.0);
@@ -396,14 +435,17 @@ TEST(HorizonCli, AMergeFindsTwinSeriesAcrossShards) {
   ASSERT_EQ(run_rollbench(common + "--shard 1/2 --out " + b.string()).code, 0);
   // each shard alone holds one of the two: no twin
   const nlohmann::json shard = nlohmann::json::parse(slurp(b));
-  ASSERT_EQ(shard.at("horizon").at("runs").size(), 1u);
+  ASSERT_EQ(shard.at("horizon").at("runs").size(), 3u);
   EXPECT_TRUE(shard.at("horizon").at("runs")[0].at("same_as").at("energy_error").is_null());
   ASSERT_EQ(run_rollbench("merge " + a.string() + " " + b.string() + " --out " + merged.string()).code, 0);
   const nlohmann::json whole = nlohmann::json::parse(slurp(merged));
   const nlohmann::json& runs = whole.at("horizon").at("runs");
-  ASSERT_EQ(runs.size(), 2u);
-  EXPECT_TRUE(runs[0].at("same_as").at("energy_error").is_null());
-  EXPECT_EQ(runs[1].at("same_as").at("energy_error"), "rk4");
+  // rk4, rkmk4 at h, then at 4 h and 16 h: twins within a step, never across
+  ASSERT_EQ(runs.size(), 6u);
+  for (std::size_t i = 0; i < 6; i += 2) {
+    EXPECT_TRUE(runs[i].at("same_as").at("energy_error").is_null()) << i;
+    EXPECT_EQ(runs[i + 1].at("same_as").at("energy_error"), "rk4") << i + 1;
+  }
 }
 
 TEST(HorizonCli, BadOptionsExitWithTwo) {

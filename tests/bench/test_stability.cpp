@@ -110,11 +110,15 @@ void expect_a_sound_ladder(const StableStepRecord& r, const StabilitySpec& st) {
   for (std::size_t i = 0; i < r.tried.size(); ++i) {
     const StableStepTry& t = r.tried[i];
     const std::string at = who + " at h = " + std::to_string(t.h);
-    if (i > 0) EXPECT_DOUBLE_EQ(t.h, 2 * r.tried[i - 1].h) << at;
+    if (i > 0) {
+      EXPECT_DOUBLE_EQ(t.h, 2 * r.tried[i - 1].h) << at;
+    }
     EXPECT_EQ(t.stable, t.failure == StabilityFailure::none) << at;
     EXPECT_EQ(t.stable, i + 1 < r.tried.size() || r.at_limit) << at;
     // a stable rung reached the horizon (beyond bowl-3d's own t_end of 5 s)
-    if (t.stable) EXPECT_DOUBLE_EQ(t.stop_time, st.search_t_end) << at;
+    if (t.stable) {
+      EXPECT_DOUBLE_EQ(t.stop_time, st.search_t_end) << at;
+    }
     // a failure is a real one: its numbers pass its bound
     switch (t.failure) {
       case StabilityFailure::none:
@@ -166,7 +170,9 @@ TEST(Stability, TheLimitIsASoundLadderAndHoldsAtFourTimesTheHorizon) {
     // order >= 2: the same within one ladder step. Order 1 (euler,
     // exp-euler) is unstable at every h on a conservative motion (its energy
     // grows as e^(c h t)), so its limit falls with the horizon
-    if (r.method.declared_order >= 2) EXPECT_LE(moved, 1.0) << who;
+    if (r.method.declared_order >= 2) {
+      EXPECT_LE(moved, 1.0) << who;
+    }
   }
   // the cases of issue 30: inaccurate, not unstable
   const auto tried_at = [](const StableStepRecord& r, double h) {
