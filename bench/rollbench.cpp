@@ -27,7 +27,28 @@
 
 namespace {
 
-int run_list() {
+std::string declared_order_text(const rb::MethodInfo& m) {
+  std::string order = std::to_string(m.declared_order);
+  if (m.embedded_order > 0) order += "(" + std::to_string(m.embedded_order) + ")";
+  return order;
+}
+
+// The registry as the Markdown table docs/integrators.md carries
+// (scripts/method_table.py writes it there; tests/docs checks it is current).
+int run_list_markdown() {
+  std::printf("| name | family | order | steps | description |\n| --- | --- | --- | --- | --- |\n");
+  for (const auto& integrator : rb::registry()) {
+    const rb::MethodInfo m = integrator->info();
+    std::string description;
+    for (const char c : m.description) description += c == '|' ? std::string("\\|") : std::string(1, c);
+    std::printf("| %s | `%s` | %s | %s | %s |\n", m.name.c_str(), m.family.c_str(), declared_order_text(m).c_str(),
+                m.adaptive ? "adaptive" : "fixed", description.c_str());
+  }
+  return 0;
+}
+
+int run_list(bool markdown) {
+  if (markdown) return run_list_markdown();
   std::printf("integrators (name, family, declared order with the embedded one in parentheses, adaptive):\n");
   // columns as wide as their widest entry, so a long family name never shifts the row
   int name_width = 0, family_width = 0;
@@ -37,10 +58,8 @@ int run_list() {
   }
   for (const auto& integrator : rb::registry()) {
     const rb::MethodInfo m = integrator->info();
-    std::string order = std::to_string(m.declared_order);
-    if (m.embedded_order > 0) order += "(" + std::to_string(m.embedded_order) + ")";
-    std::printf("  %-*s %-*s %5s  %-8s %s\n", name_width, m.name.c_str(), family_width, m.family.c_str(), order.c_str(),
-                m.adaptive ? "adaptive" : "fixed", m.description.c_str());
+    std::printf("  %-*s %-*s %5s  %-8s %s\n", name_width, m.name.c_str(), family_width, m.family.c_str(),
+                declared_order_text(m).c_str(), m.adaptive ? "adaptive" : "fixed", m.description.c_str());
   }
   std::printf("\nscenes (in %s):\n", RB_SCENE_DIR);
   for (const std::string& name : rb::shipped_scene_names()) {
@@ -417,6 +436,9 @@ int main(int argc, char** argv) {
                         "wall-clock limit in seconds of one isolated --stepper run (default 300); past it the run "
                         "is killed: status timeout");
   };
+  bool list_markdown = false;
+  list->add_flag("--markdown", list_markdown,
+                 "the integrators alone, as the Markdown table of docs/integrators.md (scripts/method_table.py)");
   list->add_option("--stepper", steppers, stepper_help);
   add_tableau_option(list);
 
@@ -534,7 +556,7 @@ int main(int argc, char** argv) {
     rb::register_plugin_steppers(steppers, rb::plugin_isolation(stepper_isolation, stepper_timeout));
     const std::vector<std::string> tableau_methods = rb::add_tableau_files(
         tableau_files, [](const std::string& note) { std::fprintf(stderr, "rollbench: note: %s\n", note.c_str()); });
-    if (app.got_subcommand("list")) return run_list();
+    if (app.got_subcommand("list")) return run_list(list_markdown);
     if (app.got_subcommand("trajectory")) return run_trajectory(traj);
     if (app.got_subcommand("landscape")) return run_landscape(land);
     if (app.got_subcommand("reversibility")) return run_reversibility(rev);

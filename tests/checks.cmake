@@ -6,6 +6,12 @@ add_test(NAME docs.links
          COMMAND ${RB_PYTHON3} -m unittest discover -s tests/docs -t .
          WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
 
+# the method table of docs/integrators.md is `rollbench list --markdown`
+# (scripts/method_table.py writes it; a registry change without it fails here)
+add_test(NAME docs.method_table
+         COMMAND ${RB_PYTHON3} scripts/method_table.py --check $<TARGET_FILE:rollbench>
+         WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
+
 # scripts/slurm/ on a real single-node cluster on localhost; skipped (77)
 # without root or without slurm-wlm and munge. Its own waits give up well
 # before this timeout, so that it always stops what it started. Once, in the

@@ -14,7 +14,7 @@ MethodInfo facts_of(const Tableau& tableau, std::string name) {
           .family = "rk",
           .declared_order = tableau.order(),
           .description = "classical explicit RK (" + tableau.name() + " tableau, " + std::to_string(tableau.stages()) +
-                         " stages) on the flat view",
+                         (tableau.stages() == 1 ? " stage" : " stages") + ") on the flat view",
           .tableau = tableau.name()};
 }
 

@@ -59,6 +59,22 @@ TEST(Cli, ListAlignsItsColumnsForTheLongestNameAndFamily) {
   EXPECT_EQ(rows, static_cast<int>(registry().size()));
 }
 
+TEST(Cli, ListAsMarkdownIsOneRowOfFiveCellsPerMethod) {
+  const Outcome o = rollbench("list --markdown");
+  ASSERT_EQ(o.code, 0) << o.err;
+  const std::vector<std::string> lines = lines_of(o.out);
+  ASSERT_EQ(lines.size(), 2 + registry().size());
+  EXPECT_EQ(lines[0], "| name | family | order | steps | description |");
+  for (std::size_t i = 0; i < registry().size(); ++i) {
+    const std::string& row = lines[2 + i];
+    EXPECT_EQ(row.rfind("| " + registry()[i]->name() + " | `" + registry()[i]->info().family + "` | ", 0), 0u) << row;
+    // six unescaped bars: a '|' in a description is written \|
+    int bars = 0;
+    for (std::size_t k = 0; k < row.size(); ++k) bars += row[k] == '|' && (k == 0 || row[k - 1] != '\\');
+    EXPECT_EQ(bars, 6) << row;
+  }
+}
+
 TEST(Cli, TrajectoryWritesTheCsvOfFormats) {
   const fs::path csv = temp_file("ok.csv");
   const Outcome o =
