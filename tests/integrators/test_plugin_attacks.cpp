@@ -25,9 +25,10 @@ using testing::cli_temp_file;
 using testing::example_stepper;
 using testing::run_rollbench;
 
-std::string trajectory_with(const std::string& name, const std::string& library, const std::string& out) {
-  return "trajectory valley-sideways --integrator " + name + " --h 0.0625 --stepper-timeout 20 --out " + out +
-         " --stepper " + example_stepper(library);
+std::string trajectory_with(const std::string& name, const std::string& library, const std::string& out,
+                            const std::string& timeout_s = "20") {
+  return "trajectory valley-sideways --integrator " + name + " --h 0.0625 --stepper-timeout " + timeout_s + " --out " +
+         out + " --stepper " + example_stepper(library);
 }
 
 TEST(PluginAttacks, AConstructorRaisingSigsegvIsALoadErrorNotACrashOfRollbench) {
@@ -74,7 +75,9 @@ TEST(PluginAttacks, AForkingPluginHoldingThePipeIsOkAndItsGrandchildDoesNotOutli
 
 TEST(PluginAttacks, APluginWriting400MibIsKilledAtTheAnswerLimit) {
   const std::filesystem::path csv = cli_temp_file("flood.csv");
-  const testing::CliOutcome o = run_rollbench(trajectory_with("flood-stepper", "flood_stepper", csv.string()));
+  // the answer limit, not the clock, must stop it: a timeout far beyond the
+  // seconds 128 MiB take through a pipe under a sanitizer on a loaded machine
+  const testing::CliOutcome o = run_rollbench(trajectory_with("flood-stepper", "flood_stepper", csv.string(), "300"));
   EXPECT_EQ(o.code, 3);
   EXPECT_EQ(o.err,
             "rollbench: run stopped early at t = 0: crashed: stepper 'flood-stepper' crashed: its process sent more "
