@@ -14,6 +14,7 @@
 #include <type_traits>
 
 #include "integrators/driver.hpp"
+#include "integrators/steppers/stepped_method.hpp"
 
 namespace rb {
 
@@ -25,41 +26,35 @@ void load(const FlatState& y, OdeintState& x) { std::copy_n(y.data(), kFlatSize,
 void store(const OdeintState& x, FlatState& y) { std::copy_n(x.begin(), kFlatSize, y.data()); }
 
 // An adapter's facts: its registry name, declared order and line for
-// `rollbench list`, in the family "odeint".
-class OdeintIntegrator : public Integrator {
- public:
-  // tableau: the registry's name of the Butcher tableau the stepper uses,
-  // where a Lie-group method shares it (MethodInfo::tableau)
-  OdeintIntegrator(std::string name, int order, std::string description, bool adaptive = false,
-                   std::string tableau = {})
-      : Integrator({.name = std::move(name),
-                    .family = "odeint",
-                    .declared_order = order,
-                    .adaptive = adaptive,
-                    .description = std::move(description),
-                    .tableau = std::move(tableau)}) {}
-};
+// `rollbench list`, in the family "odeint"; tableau: the registry's name of
+// the Butcher tableau the stepper uses, where a Lie-group method shares it
+// (MethodInfo::tableau).
+MethodInfo odeint_facts(std::string name, int order, std::string description, bool adaptive, std::string tableau) {
+  return {.name = std::move(name),
+          .family = "odeint",
+          .declared_order = order,
+          .adaptive = adaptive,
+          .description = std::move(description),
+          .tableau = std::move(tableau)};
+}
 
 // ---- fixed step ----
 
 // A one-step stepper's do_step on the run's own copy x of the state; the
-// stepper lives in the run. drive_fixed_step always passes back the state a
-// step returned (a run stops at a bad step), so x already holds it: one copy
-// a step, out to the driver. dopri5 keeps its last derivative (FSAL), sound
-// for the same reason.
+// stepper lives in the run (stepped_method makes one per run).
+// drive_fixed_step always passes back the state a step returned (a run stops
+// at a bad step), so x already holds it: one copy a step, out to the driver.
+// dopri5 keeps its last derivative (FSAL), sound for the same reason.
 template <class Stepper>
-class OdeintFixed final : public OdeintIntegrator {
- public:
-  using OdeintIntegrator::OdeintIntegrator;
-  RunResult integrate(const Problem& problem, const RunOptions& options) const override {
-    Stepper stepper;
-    OdeintState x;
-    load(problem.y0(), x);
-    auto step = [&](const FlatState& /*y, held in x*/, FlatState& next, double t, double h, Cost& cost) {
-      stepper.do_step(OdeintSystem{&problem, &cost}, x, t, h);
-      store(x, next);
-    };
-    return drive_fixed_step(problem, options, step);
+struct OdeintStep {
+  const Problem* problem;
+  Stepper stepper{};
+  OdeintState x{};
+
+  explicit OdeintStep(const Problem& p) : problem(&p) { load(p.y0(), x); }
+  void operator()(const FlatState& /*y, held in x*/, FlatState& next, double t, double h, Cost& cost) {
+    stepper.do_step(OdeintSystem{problem, &cost}, x, t, h);
+    store(x, next);
   }
 };
 
@@ -70,25 +65,31 @@ class OdeintFixed final : public OdeintIntegrator {
 // evaluations each, then 2 a step). Changes at rounding level (spacings that
 // are multiples of h, computed as span / n) keep the history.
 template <std::size_t Steps>
-class OdeintAbm final : public OdeintIntegrator {
- public:
-  using OdeintIntegrator::OdeintIntegrator;
-  RunResult integrate(const Problem& problem, const RunOptions& options) const override {
-    ode::adams_bashforth_moulton<Steps, OdeintState> stepper;
-    OdeintState x;  // the state, as in OdeintFixed
-    load(problem.y0(), x);
-    double h_history = 0.0;  // the step the stored derivatives belong to
-    auto step = [&](const FlatState& /*y, held in x*/, FlatState& next, double t, double h, Cost& cost) {
-      if (std::abs(h - h_history) > 1e-12 * h) {
-        stepper.reset();
-        h_history = h;
-      }
-      stepper.do_step(OdeintSystem{&problem, &cost}, x, t, h);
-      store(x, next);
-    };
-    return drive_fixed_step(problem, options, step);
+struct OdeintAbmStep {
+  const Problem* problem;
+  ode::adams_bashforth_moulton<Steps, OdeintState> stepper{};
+  OdeintState x{};         // the state, as in OdeintStep
+  double h_history = 0.0;  // the step the stored derivatives belong to
+
+  explicit OdeintAbmStep(const Problem& p) : problem(&p) { load(p.y0(), x); }
+  void operator()(const FlatState& /*y, held in x*/, FlatState& next, double t, double h, Cost& cost) {
+    if (std::abs(h - h_history) > 1e-12 * h) {
+      stepper.reset();
+      h_history = h;
+    }
+    stepper.do_step(OdeintSystem{problem, &cost}, x, t, h);
+    store(x, next);
   }
 };
+
+// A fixed-step odeint method: its facts (family "odeint") and its stepper,
+// made an integrator by stepped_method like every fixed-step method.
+template <class Step>
+std::unique_ptr<Integrator> odeint_fixed(std::string name, int order, std::string description,
+                                         std::string tableau = {}) {
+  return stepped_method(odeint_facts(std::move(name), order, std::move(description), false, std::move(tableau)),
+                        [](const Problem& problem) { return Step(problem); });
+}
 
 // ---- adaptive ----
 
@@ -214,10 +215,10 @@ class DenseDopri5 {
 };
 
 template <class Stepper>
-class OdeintAdaptive final : public OdeintIntegrator {
+class OdeintAdaptive final : public Integrator {
  public:
   OdeintAdaptive(std::string name, int order, std::string description, std::string tableau = {})
-      : OdeintIntegrator(std::move(name), order, std::move(description), true, std::move(tableau)) {}
+      : Integrator(odeint_facts(std::move(name), order, std::move(description), true, std::move(tableau))) {}
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
     Stepper stepper(problem, tolerances_of(options));
     return drive_adaptive(problem, options, declared_order(), stepper);
@@ -230,37 +231,37 @@ using Controlled = ControlledStepper<ode::controlled_runge_kutta<Rk>>;
 }  // namespace
 
 std::unique_ptr<Integrator> odeint_euler() {
-  return std::make_unique<OdeintFixed<ode::euler<OdeintState>>>(
-      "odeint-euler", 1, "Boost.Odeint euler (explicit Euler) on the flat view", false, "euler");
+  return odeint_fixed<OdeintStep<ode::euler<OdeintState>>>(
+      "odeint-euler", 1, "Boost.Odeint euler (explicit Euler) on the flat view", "euler");
 }
 
 std::unique_ptr<Integrator> odeint_rk4() {
-  return std::make_unique<OdeintFixed<ode::runge_kutta4<OdeintState>>>(
-      "odeint-rk4", 4, "Boost.Odeint runge_kutta4 (classic RK4, 4 evaluations a step) on the flat view", false, "rk4");
+  return odeint_fixed<OdeintStep<ode::runge_kutta4<OdeintState>>>(
+      "odeint-rk4", 4, "Boost.Odeint runge_kutta4 (classic RK4, 4 evaluations a step) on the flat view", "rk4");
 }
 
 std::unique_ptr<Integrator> odeint_cash_karp54() {
-  return std::make_unique<OdeintFixed<ode::runge_kutta_cash_karp54<OdeintState>>>(
+  return odeint_fixed<OdeintStep<ode::runge_kutta_cash_karp54<OdeintState>>>(
       "odeint-cash-karp54", 5, "Boost.Odeint runge_kutta_cash_karp54 at fixed step (5th-order solution)");
 }
 
 std::unique_ptr<Integrator> odeint_dopri5() {
-  return std::make_unique<OdeintFixed<ode::runge_kutta_dopri5<OdeintState>>>(
-      "odeint-dopri5", 5, "Boost.Odeint runge_kutta_dopri5 at fixed step (5th order, FSAL)", false, "dp54");
+  return odeint_fixed<OdeintStep<ode::runge_kutta_dopri5<OdeintState>>>(
+      "odeint-dopri5", 5, "Boost.Odeint runge_kutta_dopri5 at fixed step (5th order, FSAL)", "dp54");
 }
 
 std::unique_ptr<Integrator> odeint_fehlberg78() {
-  return std::make_unique<OdeintFixed<ode::runge_kutta_fehlberg78<OdeintState>>>(
-      "odeint-fehlberg78", 8, "Boost.Odeint runge_kutta_fehlberg78 at fixed step (8th-order solution)", false, "f78");
+  return odeint_fixed<OdeintStep<ode::runge_kutta_fehlberg78<OdeintState>>>(
+      "odeint-fehlberg78", 8, "Boost.Odeint runge_kutta_fehlberg78 at fixed step (8th-order solution)", "f78");
 }
 
 std::unique_ptr<Integrator> odeint_abm4() {
-  return std::make_unique<OdeintAbm<4>>("odeint-abm4", 4,
+  return odeint_fixed<OdeintAbmStep<4>>("odeint-abm4", 4,
                                         "Boost.Odeint adams_bashforth_moulton<4> (PECE), started with runge_kutta4");
 }
 
 std::unique_ptr<Integrator> odeint_abm5() {
-  return std::make_unique<OdeintAbm<5>>("odeint-abm5", 5,
+  return odeint_fixed<OdeintAbmStep<5>>("odeint-abm5", 5,
                                         "Boost.Odeint adams_bashforth_moulton<5> (PECE), started with runge_kutta4");
 }
 
