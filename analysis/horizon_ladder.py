@@ -142,11 +142,14 @@ def _verdict(v, v_class, others):
     """What the variational run adds over the symmetric, non-variational runs of the same scene, and its key."""
     grown = [r for r, c in others if c == "grows"]
     held = [r for r, c in others if c == "bounded"]
-    names = ", ".join(r["integrator"] for r in (grown if v_class == "bounded" else held))
+    open_ = [r for r, c in others if c == "not yet asymptotic"]
+    names = ", ".join(r["integrator"] for r in (grown or open_ if v_class == "bounded" else held))
     if v_class == "not yet asymptotic":
         return "undecided at this horizon", "undecided"
     if v_class == "bounded" and grown:
         return f"it keeps the energy bounded where symmetry alone did not ({names})", "bounded"
+    if v_class == "bounded" and open_:
+        return f"it keeps the energy bounded where symmetry alone is still undecided ({names})", "ahead"
     if v_class == "bounded":
         peers = [r for r, _ in others if r.get("declared_order") == v.get("declared_order")] or [r for r, _ in others]
         best = min(peers, key=relative_energy_error, default=None)
@@ -187,7 +190,9 @@ def variational_lines(report, symmetric):
                 parts.append("discrete gradient: " + ", ".join(_with_error(r) for r in gradient))
             lines.append(f"- Variational structure, {scene}: " + "; ".join(parts) + f" — {text}; CPU {cpu}.")
     if verdicts:
-        said = (("bounded", "bounded where symmetry alone was not on "), ("nothing", "nothing beyond symmetry on "),
+        said = (("bounded", "bounded where symmetry alone was not on "),
+                ("ahead", "bounded where symmetry alone is still undecided on "),
+                ("nothing", "nothing beyond symmetry on "),
                 ("worse", "growth where symmetry alone stayed bounded on "), ("grows", "growth like symmetry's on "),
                 ("undecided", "undecided on "), ("alone", "no symmetric peer on "))
         lines.append("- What the variational structure adds to the energy (a discrete Lagrange–d'Alembert method "
