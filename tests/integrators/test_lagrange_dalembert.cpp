@@ -41,6 +41,80 @@ TEST(LagrangeDalembert, TheStepBackUndoesTheStepAndRStaysARotation) {
   }
 }
 
+// The discrete Lagrangian of docs/model.md at q0 = (R0, alpha0), q1 = (R1,
+// alpha1), written here from its definition (not from the stepper's
+// equations): phi = cay^-1(R0^T R1) = 2 vee(F - F^T) / (1 + tr F).
+struct DiscreteLagrangian {
+  const RollingBall& ball;
+  double h;
+  Vec3 theta_body;
+
+  Vec3 centre(const Vec2& a) const {
+    const double z[kZSize] = {0.0, 0.0, 0.0, a[0], a[1]};
+    const Kinematics<double> k = ball.kinematics<false>(Mat3::Identity().eval(), z);
+    return Vec3(a[0], a[1], ball.landscape().height(a[0], a[1])) + ball.params().radius * k.N;
+  }
+  double operator()(const Mat3& R0, const Vec2& a0, const Mat3& R1, const Vec2& a1) const {
+    const Mat3 F = R0.transpose() * R1;
+    const Vec3 phi = 2.0 * Vec3(F(2, 1) - F(1, 2), F(0, 2) - F(2, 0), F(1, 0) - F(0, 1)) / (1.0 + F.trace());
+    const Vec3 C0 = centre(a0), C1 = centre(a1);
+    const double m = ball.params().mass, g0 = ball.params().gravity;
+    return phi.dot(theta_body.cwiseProduct(phi)) / (2 * h) + m * (C1 - C0).squaredNorm() / (2 * h) -
+           0.5 * h * m * g0 * (C0.z() + C1.z());
+  }
+  // (zeta, B zeta) in D at alpha: B zeta = r E^-1 C'^T (zeta x N)
+  Vec2 along_d(const Vec2& a, const Vec3& zeta) const {
+    const double z[kZSize] = {0.0, 0.0, 0.0, a[0], a[1]};
+    const Kinematics<double> k = ball.kinematics<false>(Mat3::Identity().eval(), z);
+    return ball.params().radius * k.E.inverse() * k.C_d.transpose() * zeta.cross(k.N);
+  }
+};
+
+TEST(LagrangeDalembert, ItsMomentaAreTheDiscreteLagrangiansDerivativesOnTheDistribution) {
+  // the discrete Lagrange-d'Alembert principle, checked against L_d itself
+  // by central differences: for a step (q0, v0) -> (q1, v1) of the method,
+  // v0 = -D1 L_d and v1 = D2 L_d on D (along (zeta, B zeta), zeta = e_i,
+  // R turned by exp(eps hat(zeta))), and the pair satisfies the discrete
+  // rolling constraint; on a general landscape and where R feeds back
+  for (const char* scene : {"valley-sideways", "paraboloid-chaplygin", "gaussian-hills-chaplygin"}) {
+    SCOPED_TRACE(scene);
+    const Problem& p = testing::shipped_scene(scene);
+    const RollingBall& ball = p.model();
+    const double h = 0.05, m = ball.params().mass, r = ball.params().radius;
+    const RunResult step = find_integrator("dla2").integrate(p, testing::fixed(h, h));
+    ASSERT_EQ(step.status, Status::ok) << step.message;
+    const FlatState &y0 = p.y0(), &y1 = step.final_state;
+    const Mat3 R0 = rotation_of(y0), R1 = rotation_of(y1);
+    const Vec2 a0 = contact_of(y0), a1 = contact_of(y1);
+    const DiscreteLagrangian L{ball, h, ball.params().inertia.value_or(Vec3::Constant(0.4 * m * r * r))};
+    const double eps = 1e-6;
+    Vec3 d1, d2;
+    for (int i = 0; i < 3; ++i) {
+      const Vec3 e = Vec3::Unit(i);
+      const Vec2 b0 = L.along_d(a0, e), b1 = L.along_d(a1, e);
+      d1[i] = (L(so3_exp(eps * e) * R0, a0 + eps * b0, R1, a1) - L(so3_exp(-eps * e) * R0, a0 - eps * b0, R1, a1)) /
+              (2 * eps);
+      d2[i] = (L(R0, a0, so3_exp(eps * e) * R1, a1 + eps * b1) - L(R0, a0, so3_exp(-eps * e) * R1, a1 - eps * b1)) /
+              (2 * eps);
+    }
+    const Vec3 v0 = momentum_of(y0), v1 = momentum_of(y1);
+    EXPECT_GT((v1 - v0).norm(), 1e-4 * v0.norm());
+    EXPECT_LT((-d1 - v0).norm(), 1e-7 * v0.norm()) << (-d1).transpose() << " vs " << v0.transpose();
+    EXPECT_LT((d2 - v1).norm(), 1e-7 * v1.norm()) << d2.transpose() << " vs " << v1.transpose();
+    // the discrete constraint: C'(a0)^T (dC - r theta x N0) + C'(a1)^T (dC - r theta x N1) = 0
+    const double z0[kZSize] = {0.0, 0.0, 0.0, a0[0], a0[1]}, z1[kZSize] = {0.0, 0.0, 0.0, a1[0], a1[1]};
+    const Kinematics<double> k0 = ball.kinematics<false>(Mat3::Identity().eval(), z0);
+    const Kinematics<double> k1 = ball.kinematics<false>(Mat3::Identity().eval(), z1);
+    const Mat3 F = R0.transpose() * R1;
+    const Vec3 theta = R0 * (2.0 * Vec3(F(2, 1) - F(1, 2), F(0, 2) - F(2, 0), F(1, 0) - F(0, 1)) / (1.0 + F.trace()));
+    const Vec3 dC = L.centre(a1) - L.centre(a0);
+    const Vec2 slip =
+        k0.C_d.transpose() * (dC - r * theta.cross(k0.N)) + k1.C_d.transpose() * (dC - r * theta.cross(k1.N));
+    EXPECT_LT(slip.norm(), 1e-14 * (1.0 + dC.norm() / r) * r);
+    EXPECT_GT(dC.norm(), 1e-3 * r);
+  }
+}
+
 TEST(LagrangeDalembert, ReversibilityDefectIsAtRoundingAndCostIsCounted) {
   for (const char* scene : {"valley-sideways", "chaplygin-valley"}) {
     SCOPED_TRACE(scene);
