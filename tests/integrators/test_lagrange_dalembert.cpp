@@ -1,5 +1,6 @@
 // The discrete Lagrange-d'Alembert method dla2 (docs/model.md, "A discrete
-// Lagrange-d'Alembert method"): the step back undoes the step, R stays on
+// Lagrange-d'Alembert method"): its momenta against the discrete Lagrangian's
+// derivatives on the rolling distribution, the step back undoes the step, R stays on
 // SO(3), the reversibility defect at rounding, the Newton's counts, the
 // discrete momentum it keeps on a plane (and with it Chaplygin's integrals),
 // and its energy over a long run on the paraboloid. Its order is measured
