@@ -21,6 +21,10 @@ BOUNDED_P = 0.25
 ENERGY_TARGET = 1e-6
 BASELINE = "rk4"
 COST_FIGURE = "horizon-cost.png"
+# The variational method (dla2, docs/model.md#a-discrete-lagrangedalembert-method) and the discrete gradient, told
+# apart from the other symmetric methods by family.
+VARIATIONAL_FAMILY = "nonholonomic-variational"
+DISCRETE_GRADIENT_FAMILY = "discrete-gradient"
 
 
 def symmetric_methods(report):
@@ -139,6 +143,73 @@ def finding_lines(report):
         lines.append(f"- Reversibility and the energy (bounded: p ≤ {BOUNDED_P} or rounding): symmetry kept every "
                      "symmetric method's energy bounded on " + (", ".join(held) or "no scene")
                      + "; a symmetric method's energy grew on " + (", ".join(failed) or "no scene") + ".")
+    return lines + variational_lines(report, symmetric)
+
+
+def _with_error(r):
+    return f"{r['integrator']} ({_p_text(r)}, {relative_energy_error(r):.1e})"
+
+
+def _verdict(v, v_class, others):
+    """What the variational run adds over the symmetric, non-variational runs of the same scene, and its key."""
+    grown = [r for r, c in others if c == "grows"]
+    held = [r for r, c in others if c == "bounded"]
+    open_ = [r for r, c in others if c == "not yet asymptotic"]
+    names = ", ".join(r["integrator"] for r in (grown or open_ if v_class == "bounded" else held))
+    if v_class == "not yet asymptotic":
+        return "undecided at this horizon", "undecided"
+    if v_class == "bounded" and grown:
+        return f"it keeps the energy bounded where symmetry alone did not ({names})", "bounded"
+    if v_class == "bounded" and open_:
+        return f"it keeps the energy bounded where symmetry alone is still undecided ({names})", "ahead"
+    if v_class == "bounded":
+        peers = [r for r, _ in others if r.get("declared_order") == v.get("declared_order")] or [r for r, _ in others]
+        best = min(peers, key=relative_energy_error, default=None)
+        if best is None:
+            return "no symmetric, non-variational method to compare", "alone"
+        ratio = relative_energy_error(v) / relative_energy_error(best)
+        return (f"symmetry alone kept it bounded too: no boundedness added, its largest error {ratio:.2g} × "
+                f"{best['integrator']}'s"), "nothing"
+    if held:
+        return f"it grows where symmetry alone kept it bounded ({names})", "worse"
+    return "it grows, as the symmetric ones do", "grows"
+
+
+def variational_lines(report, symmetric):
+    """Per horizon scene with a variational (discrete Lagrange–d'Alembert) run: its energy class and largest error
+    beside the symmetric methods that are not variational for this nonholonomic system and the discrete gradient,
+    with what the variational structure adds and its CPU time against theirs; then one line over the scenes."""
+    lines, verdicts = [], {}
+    for scene in horizon.scenes(report):
+        entries = horizon.runs(report, scene)
+        classes = [(r, energy_class(r)) for r in entries]
+        others = [(r, c) for r, c in classes if c and r["integrator"] in symmetric
+                  and r.get("family") not in (VARIATIONAL_FAMILY, DISCRETE_GRADIENT_FAMILY)]
+        gradient = [r for r, c in classes if c and r.get("family") == DISCRETE_GRADIENT_FAMILY]
+        for v, v_class in classes:
+            if v.get("family") != VARIATIONAL_FAMILY or not v_class:
+                continue
+            text, key = _verdict(v, v_class, others)
+            verdicts.setdefault(key, []).append(scene)
+            beside = [_with_error(r) for r, _ in others]
+            cpu = ", ".join(f"{r['integrator']} {md.fmt(cpu_seconds(r))} s" for r in [v] + [r for r, _ in others]
+                            + gradient)
+            parts = [f"{v['integrator']}'s energy {_p_text(v)}, largest relative error "
+                     f"{relative_energy_error(v):.1e}"]
+            if beside:
+                parts.append("symmetric, not variational: " + ", ".join(beside))
+            if gradient:
+                parts.append("discrete gradient: " + ", ".join(_with_error(r) for r in gradient))
+            lines.append(f"- Variational structure, {scene}: " + "; ".join(parts) + f" — {text}; CPU {cpu}.")
+    if verdicts:
+        said = (("bounded", "bounded where symmetry alone was not on "),
+                ("ahead", "bounded where symmetry alone is still undecided on "),
+                ("nothing", "nothing beyond symmetry on "),
+                ("worse", "growth where symmetry alone stayed bounded on "), ("grows", "growth like symmetry's on "),
+                ("undecided", "undecided on "), ("alone", "no symmetric peer on "))
+        lines.append("- What the variational structure adds to the energy (a discrete Lagrange–d'Alembert method "
+                     "beside the symmetric, non-variational ones): "
+                     + "; ".join(text + ", ".join(verdicts[key]) for key, text in said if key in verdicts) + ".")
     return lines
 
 

@@ -23,6 +23,7 @@ FAMILY_COLOURS = {
     "scipy": "#0fa3b1",        # cyan: SciPy solve_ivp, a peer (docs/peers.md)
     "octave": "#b8860b",       # dark gold: GNU Octave's ode45/ode23/ode15s, a peer
     "discrete-gradient": "#000000",  # black: dg2, energy kept to rounding
+    "nonholonomic-variational": "#6b8e23",  # olive: dla2, discrete Lagrange-d'Alembert
 }
 FALLBACK_COLOURS = ["#17becf", "#bcbd22", "#7f7f7f", "#393b79", "#637939", "#843c39", "#7b4173"]
 UNKNOWN_FAMILY_COLOUR = "#555555"

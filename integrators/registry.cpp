@@ -23,6 +23,7 @@
 #include "integrators/steppers/explicit_midpoint.hpp"
 #include "integrators/steppers/gauss.hpp"
 #include "integrators/steppers/gsl.hpp"
+#include "integrators/steppers/lagrange_dalembert.hpp"
 #include "integrators/steppers/odeint.hpp"
 #include "integrators/steppers/tableau_methods.hpp"
 #include "problems/input_error.hpp"
@@ -106,6 +107,8 @@ std::vector<std::unique_ptr<Integrator>> make_registry() {
   for (const int order : {2, 4, 6}) add(midpoint_composition(order, true));
   // the discrete-gradient method: energy conserved to rounding
   add(discrete_gradient_method());
+  // the discrete Lagrange-d'Alembert method: variational, symmetric, on SO(3) x R^2
+  add(lagrange_dalembert_method());
   // --- end commutator-free and Crouch-Grossman ---
 
   // --- odeint --- (Boost.Odeint steppers on the flat view)

@@ -37,8 +37,9 @@ std::vector<double> step_ladder(int from, int fine_to, int coarse_to) {
 // explicit family at order 4 (rk4 and odeint-rk4: one tableau, two codes)
 // and at order 1 (euler, exp-euler: flat and on the group), and the
 // symmetric implicit methods of orders 2 and 4 on both views (gauss2,
-// lie-gauss2; gauss4, lie-gauss2-tj4) and the discrete gradient dg2, which
-// conserves the energy by construction.
+// lie-gauss2; gauss4, lie-gauss2-tj4), the discrete gradient dg2, which
+// conserves the energy by construction, and the discrete Lagrange-d'Alembert
+// method dla2, symmetric and variational (what variational structure adds).
 HorizonSpec horizon_study(long steps) {
   HorizonSpec h;
   h.enabled = true;
@@ -47,7 +48,7 @@ HorizonSpec horizon_study(long steps) {
               "chaplygin-plane"};
   h.integrators = {"euler",          "exp-euler",      "rk4", "odeint-rk4", "gsl-rk4", "rk4-projected",
                    "rk4-quaternion", "rkmk4",          "cf4", "cg4a",       "gauss2",  "lie-gauss2",
-                   "gauss4",         "lie-gauss2-tj4", "dg2"};
+                   "gauss4",         "lie-gauss2-tj4", "dg2", "dla2"};
   h.steps = steps;
   return h;
 }
