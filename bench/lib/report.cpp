@@ -300,18 +300,6 @@ json component_errors_json(const Reference& reference) {
   return out;
 }
 
-// What a report's reference gives the order fits; a component's floor is
-// NaN (the overall floor stands for it) where the report has none (older
-// than per-component floors).
-OrderScale order_scale_of(const json& reference) {
-  OrderScale scale{as_number(reference["error"]), as_number(reference["omega_scale"])};
-  if (!reference.contains("component_errors") || !reference["component_errors"].is_object()) return scale;
-  const json& each = reference["component_errors"];
-  for (std::size_t i = 0; i < kErrorComponentCount; ++i)
-    if (each.contains(kErrorComponents[i].name)) scale.component_floor[i] = as_number(each[kErrorComponents[i].name]);
-  return scale;
-}
-
 // The ball's principal moments as the scene gives them; null for the
 // homogeneous ball (I = 2/5 m r^2 about every axis), where R does not enter
 // the dynamics.
@@ -403,6 +391,16 @@ json order_fit_json(const OrderFit& fit) {
 }
 
 }  // namespace
+
+OrderScale order_scale_of(const json& reference) {
+  const auto field = [&](const char* key) { return reference.contains(key) ? reference[key] : json(); };
+  OrderScale scale{as_number(field("error")), as_number(field("omega_scale"))};
+  if (!field("component_errors").is_object()) return scale;
+  const json& each = reference["component_errors"];
+  for (std::size_t i = 0; i < kErrorComponentCount; ++i)
+    if (each.contains(kErrorComponents[i].name)) scale.component_floor[i] = as_number(each[kErrorComponents[i].name]);
+  return scale;
+}
 
 json fit_orders(const std::vector<FitRun>& runs, const ReferenceFloors& floors) {
   const RunGroups groups = group_runs(runs, false);
