@@ -10,6 +10,26 @@
 
 namespace rb {
 
+bool finer_step_may_run(Status status) {
+  switch (status) {
+    case Status::ok:
+    case Status::diverged:
+    case Status::lift_off:
+    case Status::curvature:
+    case Status::domain:
+    case Status::chart_limit: return true;
+    default: return false;
+  }
+}
+
+bool failed_runs_want_finer_steps(const std::array<ComponentOrder, kErrorComponentCount>& orders,
+                                  Status smallest_step) {
+  if (!finer_step_may_run(smallest_step)) return false;
+  return std::any_of(orders.begin(), orders.end(), [](const ComponentOrder& o) {
+    return o.reference.at_floor == 0 && o.judgement.reason == "failed runs";
+  });
+}
+
 std::vector<SweepTask> finer_step_tasks(const SweepSpec& spec, const std::vector<SweepScene>& scenes,
                                         const std::vector<RunRecord>& records, std::size_t next_index) {
   std::map<std::string, std::size_t> scene_of;
@@ -17,11 +37,13 @@ std::vector<SweepTask> finer_step_tasks(const SweepSpec& spec, const std::vector
   using Key = std::pair<std::size_t, std::string>;  // (scene, method)
   std::vector<Key> keys;
   std::map<Key, std::vector<FitRun>> groups;
+  std::map<Key, const RunRecord*> smallest_run;  // the run at the smallest step
   for (const RunRecord& r : records) {
     if (r.method.adaptive || !scene_of.count(r.scene)) continue;
     const Key key{scene_of.at(r.scene), r.method.name};
     if (!groups.count(key)) keys.push_back(key);
     groups[key].push_back(fit_run(r));
+    if (!smallest_run.count(key) || r.h < smallest_run[key]->h) smallest_run[key] = &r;
   }
   std::vector<SweepTask> out;
   const long most = std::min(kMaxExtendedSteps, spec.max_steps);
@@ -34,7 +56,10 @@ std::vector<SweepTask> finer_step_tasks(const SweepSpec& spec, const std::vector
       if (r.h > 0.0 && !(r.h >= smallest)) smallest = r.h;
     }
     const SweepScene& s = scenes[key.first];
-    if (!wants_finer_steps(group_orders(group, {s.reference.error, s.omega_scale}))) continue;
+    // without a reference no run has an error, and none fails for that
+    if (s.reference.points.empty()) continue;
+    const auto orders = group_orders(group, order_scale(s));
+    if (!wants_finer_steps(orders) && !failed_runs_want_finer_steps(orders, smallest_run.at(key)->status)) continue;
     const double t_end = s.problem.t_end();
     const double h = step_taken(smallest / 2.0, t_end);
     if (!(h > 0.0) || std::ceil(t_end / h - 1e-9) > static_cast<double>(most)) continue;

@@ -1,11 +1,29 @@
 #include "bench/lib/group_orders.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "bench/lib/self_convergence.hpp"
 
 namespace rb {
+
+OrderFit self_convergence_fit(const std::vector<double>& h, const std::vector<double>& distance,
+                              const OrderFit& reference, double ceiling, double span) {
+  // no reference, so no floor: rounding alone ends the self-convergence
+  const OrderFit own = fit_order(h, distance, 0.0, ceiling, kOrderWindowPoints, span);
+  if (!std::isfinite(reference.slope)) return own;
+  std::vector<double> in_h, in_d;
+  for (std::size_t k = 0; k < h.size() && k < distance.size(); ++k)
+    if (h[k] >= reference.h_min / kWindowSlack && h[k] <= reference.h_max * kWindowSlack)
+      in_h.push_back(h[k]), in_d.push_back(distance[k]);
+  const OrderFit matched = fit_order(in_h, in_d, 0.0, ceiling, kOrderWindowPoints, span);
+  return std::isfinite(matched.slope) ? matched : own;
+}
+
+OrderScale order_scale(const SweepScene& scene) {
+  return {scene.reference.error, scene.omega_scale, scene.reference.component_error};
+}
 
 double order_ceiling(std::size_t component, double omega_scale) {
   return kErrorComponents[component].scale == ErrorScale::omega_scale ? kOrderCeiling * omega_scale : kOrderCeiling;
@@ -13,7 +31,6 @@ double order_ceiling(std::size_t component, double omega_scale) {
 
 std::array<ComponentOrder, kErrorComponentCount> group_orders(const std::vector<const FitRun*>& group,
                                                               const OrderScale& scale) {
-  const double floor = scale.floor;
   std::array<ComponentOrder, kErrorComponentCount> out;
   if (group.empty()) return out;
   const FitRun& first = *group.front();
@@ -24,6 +41,7 @@ std::array<ComponentOrder, kErrorComponentCount> group_orders(const std::vector<
   const std::vector<SelfDifference> self = self_differences(group);
   for (std::size_t i = 0; i < kErrorComponentCount; ++i) {
     const std::string c = kErrorComponents[i].name;
+    const double floor = std::isfinite(scale.component_floor[i]) ? scale.component_floor[i] : scale.floor;
     std::vector<double> h, e;
     for (const FitRun* r : group) {
       h.push_back(r->h);
@@ -41,8 +59,7 @@ std::array<ComponentOrder, kErrorComponentCount> group_orders(const std::vector<
     o.declared = c == "rotation" ? first.declared_rotation_order : first.declared_order;
     const double ceiling = order_ceiling(i, scale.omega_scale);
     o.reference = fit_order(h, e, floor, ceiling, kOrderWindowPoints, span);
-    // no reference, so no floor: rounding alone ends the self-convergence
-    o.self = fit_order(self_h, self_d, 0.0, ceiling, kOrderWindowPoints, span);
+    o.self = self_convergence_fit(self_h, self_d, o.reference, ceiling, span);
     o.judgement = judge_order(o.reference, o.self, o.declared);
   }
   return out;

@@ -26,11 +26,28 @@ inline constexpr std::size_t kOrderWindowPoints = 8;
 inline constexpr double kOrderCeiling = 0.1;
 
 // What a scene gives the fits of its runs: the reference's floor (its own
-// error) and omega_scale (the reference's largest |omega|).
+// error, the largest over the components), omega_scale (the reference's
+// largest |omega|) and the floor of each component (its own error in that
+// component; NaN: floor stands for it, as in a report older than these).
 struct OrderScale {
   double floor = 0.0;
   double omega_scale = 1.0;
+  std::array<double, kErrorComponentCount> component_floor{kNaN, kNaN, kNaN, kNaN};
 };
+
+// The self-convergence fit (self_convergence.hpp) of distances D(h)
+// between the runs at h and h/2: over the same steps as the reference
+// fit's window (h in [h_min, h_max], within kWindowSlack), so that both
+// slopes read the same stretch of the ladder and a pre-asymptotic step
+// outside the window moves neither; where that holds fewer than two
+// distances, or the reference fit has no slope, its own window from the
+// smallest step up.
+inline constexpr double kWindowSlack = 1.1;
+OrderFit self_convergence_fit(const std::vector<double>& h, const std::vector<double>& distance,
+                              const OrderFit& reference, double ceiling, double span);
+
+// A sweep's scene's: its reference's floors and omega_scale.
+OrderScale order_scale(const SweepScene& scene);
 
 // The ceiling of component i (kErrorComponents): kOrderCeiling, times
 // omega_scale for a component on that scale (an angular velocity's error

@@ -169,6 +169,12 @@ bool slopes_agree(const std::vector<double>& slopes) {
   return 0.5 * (*most - *least) <= std::max(kHalvingAgreement, 0.05 * std::abs(middle));
 }
 
+bool climbing_to(const OrderFit& fit, double bar) {
+  const std::vector<double>& s = fit.halving_slopes;
+  if (s.empty()) return false;
+  return s[0] >= bar || (s.size() >= 2 && s[0] + (s[0] - s[1]) >= bar);
+}
+
 bool pre_asymptotic(const OrderFit& fit) {
   return fit.points >= kMinOrderPoints && std::isfinite(fit.slope) && !fit.asymptotic;
 }
@@ -180,6 +186,9 @@ bool wants_finer_steps(const OrderFit& fit, int declared) {
     // a ladder of enough runs that ends before its errors come under the
     // ceiling; not a short ladder the user chose, nor runs that failed
     return fit.smallest_finite && fit.above_ceiling > 0 && fit.points + fit.above_ceiling >= kMinOrderPoints;
+  // an interval too wide to decide while the slopes still move: finer
+  // steps reach the asymptotic range, where the slope settles
+  if (why == "wide interval") return !fit.asymptotic;
   return why == "pre-asymptotic" || why == "straddles";
 }
 
@@ -194,7 +203,11 @@ std::string inconclusive_reason(const OrderFit& fit, int declared) {
     return failures ? "failed runs" : "too few points";
   }
   if (!(fit.slope_ci95 <= kMaxHalfWidth)) return "wide interval";
-  if (pre_asymptotic(fit)) return fit.at_floor == 0 ? "pre-asymptotic" : "no asymptotic range above the plateau";
+  // an interval below the bar whose slope still climbs towards it
+  const double bar = declared - kOrderTolerance;
+  const bool climbing = fit.slope + fit.slope_ci95 < bar && climbing_to(fit, bar);
+  if (pre_asymptotic(fit) || climbing)
+    return fit.at_floor == 0 ? "pre-asymptotic" : "no asymptotic range above the plateau";
   return "straddles";
 }
 
@@ -221,7 +234,9 @@ std::string order_verdict(const OrderFit& fit, int declared) {
   const double bar = declared - kOrderTolerance;
   if (pre_asymptotic(fit)) return certified_at_plateau(fit, bar) ? "as declared" : "inconclusive";
   if (fit.slope - fit.slope_ci95 >= bar) return "as declared";
-  if (fit.slope + fit.slope_ci95 < bar) return "lower";
+  // a slope still climbing towards the bar at the smallest steps is not
+  // yet the method's: no lower verdict before it stops
+  if (fit.slope + fit.slope_ci95 < bar) return climbing_to(fit, bar) ? "inconclusive" : "lower";
   // an interval that holds the bar: the plateau may still certify
   return certified_at_plateau(fit, bar) ? "as declared" : "inconclusive";
 }

@@ -23,7 +23,7 @@ namespace {
 
 // Bumped when the physics or the reference procedure changes, so that stale
 // cache entries are never read.
-constexpr int kReferenceFormat = 1;
+constexpr int kReferenceFormat = 2;
 
 std::vector<ReferencePoint> solve(const Problem& problem, const std::string& method, double h,
                                   const std::vector<double>& times) {
@@ -40,6 +40,15 @@ std::vector<ReferencePoint> solve(const Problem& problem, const std::string& met
   std::vector<ReferencePoint> points;
   for (const FlatState& y : run.output.y) points.push_back(reference_point_of(problem, y));
   return points;
+}
+
+// Raises ref's own error, overall and per component, to the distance of a and b.
+void largest_distances(Reference& ref, const ReferencePoint& a, const ReferencePoint& b) {
+  const std::array<double, kErrorComponentCount> d = component_distances(a, b);
+  for (std::size_t i = 0; i < kErrorComponentCount; ++i) {
+    ref.component_error[i] = std::max(ref.component_error[i], d[i]);
+    ref.error = std::max(ref.error, d[i]);
+  }
 }
 
 std::string sha256_hex(const std::string& text) {
@@ -93,6 +102,10 @@ std::string entry_problem(const nlohmann::json& j, const nlohmann::json& expecte
   }
   if (!r.contains("error") || !r["error"].is_number() || !(r["error"].get<double>() >= 0.0))
     return "no finite own error";
+  const nlohmann::json& each = r.contains("component_errors") ? r["component_errors"] : nlohmann::json();
+  if (!each.is_array() || each.size() != kErrorComponentCount) return "no own error per component";
+  for (const nlohmann::json& v : each)
+    if (!v.is_number() || !(v.get<double>() >= 0.0)) return "an own error per component that is not finite";
   return "";
 }
 
@@ -103,6 +116,7 @@ nlohmann::json to_json(const Reference& r) {
                       {"method", r.method},
                       {"cross_check", r.cross_check},
                       {"error", r.error},
+                      {"component_errors", r.component_error},
                       {"exact_rotation", r.exact_rotation},
                       {"t", r.t}};
   nlohmann::json points = nlohmann::json::array();
@@ -125,6 +139,7 @@ Reference from_json(const nlohmann::json& j) {
   r.method = j.at("method");
   r.cross_check = j.at("cross_check");
   r.error = j.at("error");
+  r.component_error = j.at("component_errors").get<std::array<double, kErrorComponentCount>>();
   r.exact_rotation = j.at("exact_rotation");
   r.t = j.at("t").get<std::vector<double>>();
   for (const auto& row : j.at("points")) {
@@ -224,8 +239,7 @@ Reference make_reference(const Problem& problem, const std::string& scene_conten
   name << settings.cross_check << " h=" << settings.h / 2;
   ref.cross_check = name.str();
   ref.kind = "computed";
-  for (std::size_t i = 0; i < times.size(); ++i)
-    ref.error = std::max(ref.error, point_distance(ref.points[i], check[i]));
+  for (std::size_t i = 0; i < times.size(); ++i) largest_distances(ref, ref.points[i], check[i]);
 
   if (const ExactSolution* exact = problem.exact()) {
     // the closed form replaces what it knows; the computed solution checks it
@@ -233,18 +247,23 @@ Reference make_reference(const Problem& problem, const std::string& scene_conten
     ref.cross_check = ref.method;
     ref.method = "exact " + exact->name();
     ref.exact_rotation = false;
-    double disagreement = 0.0;
+    const std::array<double, kErrorComponentCount> computed = ref.component_error;
+    ref.error = 0.0;
+    ref.component_error.fill(0.0);
     for (std::size_t i = 0; i < times.size(); ++i) {
       const ExactState e = exact->at(times[i]);
       FlatState y = make_flat(e.has_rotation ? e.R : ref.points[i].R, Vec3::Zero(), e.alpha);
       const Vec3 N = problem.model().normal_at(e.alpha.x(), e.alpha.y());
       y.segment<3>(kOffsetV) = problem.model().momentum_from_omega(e.R, N, e.omega);
       const ReferencePoint p = reference_point_of(problem, y);
-      disagreement = std::max(disagreement, point_distance(p, ref.points[i]));
+      largest_distances(ref, p, ref.points[i]);
       ref.points[i] = p;
       ref.exact_rotation = e.has_rotation;
     }
-    ref.error = disagreement;
+    // a rotation the closed form does not know is the computed one's, with its error
+    for (std::size_t c = 0; c < kErrorComponentCount; ++c)
+      if (!ref.exact_rotation && std::string(kErrorComponents[c].name) == "rotation")
+        ref.component_error[c] = computed[c];
   }
 
   if (!cache_file.empty()) {

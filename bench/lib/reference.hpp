@@ -29,10 +29,15 @@ struct ReferencePoint {
 
 struct Reference {
   std::string scene;
-  std::string kind;            // "exact", "computed", or "none" when a reference method failed
-  std::string method;          // e.g. "rkmk4 h=0.000244140625" or "exact plane"
-  std::string cross_check;     // the second method
-  double error = 0.0;          // largest disagreement, contact/centre/omega/rotation
+  std::string kind;         // "exact", "computed", or "none" when a reference method failed
+  std::string method;       // e.g. "rkmk4 h=0.000244140625" or "exact plane"
+  std::string cross_check;  // the second method
+  double error = 0.0;       // largest disagreement, contact/centre/omega/rotation
+  // the largest disagreement in each error component (kErrorComponents),
+  // each in its own unit: the floor of that component's order fit (ω, in
+  // rad/s of a scene whose |ω| reaches 38, has a floor far above the
+  // contact point's, in m)
+  std::array<double, kErrorComponentCount> component_error{};
   bool exact_rotation = true;  // false: the rotation comes from the computed solution
   std::vector<double> t;
   std::vector<ReferencePoint> points;

@@ -292,6 +292,14 @@ json stability_json(const StabilityResults& s) {
 
 double as_number(const json& j) { return j.is_number() ? j.get<double>() : kNaN; }
 
+// A reference's own error per component, by component name.
+json component_errors_json(const Reference& reference) {
+  json out = json::object();
+  for (std::size_t i = 0; i < kErrorComponentCount; ++i)
+    out[kErrorComponents[i].name] = number(reference.component_error[i]);
+  return out;
+}
+
 // The ball's principal moments as the scene gives them; null for the
 // homogeneous ball (I = 2/5 m r^2 about every axis), where R does not enter
 // the dynamics.
@@ -384,6 +392,16 @@ json order_fit_json(const OrderFit& fit) {
 
 }  // namespace
 
+OrderScale order_scale_of(const json& reference) {
+  const auto field = [&](const char* key) { return reference.contains(key) ? reference[key] : json(); };
+  OrderScale scale{as_number(field("error")), as_number(field("omega_scale"))};
+  if (!field("component_errors").is_object()) return scale;
+  const json& each = reference["component_errors"];
+  for (std::size_t i = 0; i < kErrorComponentCount; ++i)
+    if (each.contains(kErrorComponents[i].name)) scale.component_floor[i] = as_number(each[kErrorComponents[i].name]);
+  return scale;
+}
+
 json fit_orders(const std::vector<FitRun>& runs, const ReferenceFloors& floors) {
   const RunGroups groups = group_runs(runs, false);
   json orders = json::array();
@@ -451,6 +469,7 @@ json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes, c
                           {"method", s.reference.method},
                           {"cross_check", s.reference.cross_check},
                           {"error", s.reference.error},
+                          {"component_errors", component_errors_json(s.reference)},
                           {"exact_rotation", s.reference.exact_rotation},
                           {"t_end", s.scene.t_end},
                           {"omega_scale", s.omega_scale},
@@ -460,7 +479,7 @@ json make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes, c
   std::map<std::string, std::string> kind;
   for (const SweepScene& s : scenes) kind[s.scene.name] = s.reference.kind;
   ReferenceFloors floors;
-  for (const SweepScene& s : scenes) floors[s.scene.name] = {s.reference.error, s.omega_scale};
+  for (const SweepScene& s : scenes) floors[s.scene.name] = order_scale(s);
   json run_list = json::array();
   std::vector<FitRun> fit_input;
   for (const RunRecord& r : runs) {
@@ -634,6 +653,14 @@ json merge_reports(const std::vector<json>& shards, const std::vector<std::strin
       // omega's ceiling in the order fits
       if (!r.contains("omega_scale") || !r["omega_scale"].is_number())
         throw InputError(where + ".omega_scale is missing or not a number", "reports");
+      // each component's floor in its order fit; absent from reports older than it
+      if (r.contains("component_errors")) {
+        const json& each = r["component_errors"];
+        if (!each.is_object()) throw InputError(where + ".component_errors is not an object", "reports");
+        for (const auto& [name, value] : each.items())
+          if (!(value.is_number() || value.is_null()))
+            throw InputError(where + ".component_errors." + name + " is not a number or null", "reports");
+      }
       if (std::none_of(references.begin(), references.end(), [&](const json& x) { return x["scene"] == r["scene"]; }))
         references.push_back(r);
     }
@@ -655,7 +682,7 @@ json merge_reports(const std::vector<json>& shards, const std::vector<std::strin
       if (ref["scene"] == r.scene && std::none_of(ordered_refs.begin(), ordered_refs.end(),
                                                   [&](const json& x) { return x["scene"] == ref["scene"]; })) {
         ordered_refs.push_back(ref);
-        floors[r.scene] = {as_number(ref["error"]), as_number(ref["omega_scale"])};
+        floors[r.scene] = order_scale_of(ref);
       }
   merged["options"] = base_options;
   merged["options"]["shard"] = {0, 1};

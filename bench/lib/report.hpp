@@ -41,6 +41,11 @@ using ReferenceFloors = std::map<std::string, OrderScale>;
 // declared, null otherwise.
 nlohmann::json fit_orders(const std::vector<FitRun>& runs, const ReferenceFloors& floors);
 
+// What a report's reference entry gives the order fits: its error,
+// omega_scale and, where it has them, its component_errors (NaN otherwise:
+// the error stands for each).
+OrderScale order_scale_of(const nlohmann::json& reference);
+
 // The "tolerance_fits" entries: per (scene, integrator) of an adaptive
 // method, the least-squares line of log10 worst error (at t_end) against
 // log10 tolerance over its runs that reached t_end, and step_order: the

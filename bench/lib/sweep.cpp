@@ -404,8 +404,9 @@ std::vector<RunRecord> run_sweep(const SweepSpec& spec, const std::vector<SweepS
     // unsharded: the indices so far are 0 .. size - 1
     const std::vector<SweepTask> finer = finer_step_tasks(spec, scenes, records, records.size());
     if (finer.empty()) break;
-    progress("orders: " + std::to_string(finer.size()) +
-             " undecided fits (pre-asymptotic, straddling or too few points) get a step half their smallest");
+    progress(
+        "orders: " + std::to_string(finer.size()) +
+        " undecided fits (pre-asymptotic, straddling, too few points or failed runs) get a step half their smallest");
     std::vector<RunRecord> more = run_tasks(spec, scenes, finer, progress);
     records.insert(records.end(), more.begin(), more.end());
   }

@@ -113,6 +113,11 @@ TEST(MergeShards, ARunTheFitsCannotReadNamesItsFileAndKey) {
   no_scale["references"] = {{{"scene", "bowl"}, {"error", 1e-12}}};
   EXPECT_EQ(merge_error({empty_shard(0, 2), no_scale}),
             "'reports': the report 'shard report 1': references[0].omega_scale is missing or not a number");
+  json bad_floor = empty_shard(1, 2);
+  bad_floor["references"] = {
+      {{"scene", "bowl"}, {"error", 1e-12}, {"omega_scale", 1.0}, {"component_errors", {{"omega", "tiny"}}}}};
+  EXPECT_EQ(merge_error({empty_shard(0, 2), bad_floor}),
+            "'reports': the report 'shard report 1': references[0].component_errors.omega is not a number or null");
 }
 
 // The merged report lists the components as a sweep's does.

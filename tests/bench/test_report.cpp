@@ -125,8 +125,7 @@ TEST(Report, TheReportListsItsErrorComponentsAndItsFitsReadThemBack) {
     for (const json& c : expected) EXPECT_TRUE(o["verdict"].contains(c["name"])) << c["name"];
   }
   ReferenceFloors floors;
-  for (const json& ref : again["references"])
-    floors[ref["scene"]] = {ref["error"].get<double>(), ref["omega_scale"].get<double>()};
+  for (const json& ref : again["references"]) floors[ref["scene"]] = order_scale_of(ref);
   const std::vector<FitRun> runs = fit_runs_of(again["runs"], "quick.json");
   EXPECT_EQ(fit_orders(runs, floors), again["orders"]);
   EXPECT_EQ(fit_tolerances(runs), again["tolerance_fits"]);

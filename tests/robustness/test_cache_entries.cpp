@@ -3,6 +3,7 @@
 // with a note and recomputed; the run's errors stay those of a fresh reference.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -116,6 +117,28 @@ TEST_F(CacheEntries, AShortEntryIsRecomputed) {
       },
       true);
   expect_refused("holds " + std::to_string(kept) + " points for " + std::to_string(kept + 1) + " output times");
+}
+
+TEST_F(CacheEntries, AnEntryWithoutItsErrorPerComponentIsRecomputed) {
+  // the order fits' floors: an entry older than them is not read
+  nlohmann::json j = nlohmann::json::parse(slurp(entry));
+  j["reference"].erase("component_errors");
+  j["checksum"] = cache_entry_checksum(j);
+  std::ofstream(entry) << j.dump();
+  expect_refused("no own error per component");
+}
+
+TEST_F(CacheEntries, TheReferenceStatesItsOwnErrorPerComponent) {
+  // each component's disagreement, the largest of them the overall error
+  const nlohmann::json& ref = fresh.report.at("references").at(0);
+  double largest = 0.0;
+  for (const char* c : {"contact", "centre", "omega", "rotation"}) {
+    const double e = ref.at("component_errors").at(c).get<double>();
+    EXPECT_GE(e, 0.0) << c;
+    EXPECT_LE(e, ref.at("error").get<double>()) << c;
+    largest = std::max(largest, e);
+  }
+  EXPECT_DOUBLE_EQ(largest, ref.at("error").get<double>());
 }
 
 }  // namespace
