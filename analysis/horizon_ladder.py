@@ -158,18 +158,20 @@ def _verdict(v, v_class, others):
     names = ", ".join(r["integrator"] for r in (grown or open_ if v_class == "bounded" else held))
     if v_class == "not yet asymptotic":
         return "undecided at this horizon", "undecided"
-    if v_class == "bounded" and grown:
+    # a symmetric, non-variational method that stays bounded shows symmetry alone suffices on this scene, whatever
+    # another one does: only where none does can the variational structure add boundedness
+    if v_class == "bounded" and grown and not held:
         return f"it keeps the energy bounded where symmetry alone did not ({names})", "bounded"
-    if v_class == "bounded" and open_:
+    if v_class == "bounded" and open_ and not held:
         return f"it keeps the energy bounded where symmetry alone is still undecided ({names})", "ahead"
     if v_class == "bounded":
-        peers = [r for r, _ in others if r.get("declared_order") == v.get("declared_order")] or [r for r, _ in others]
+        peers = [r for r in held if r.get("declared_order") == v.get("declared_order")] or held
         best = min(peers, key=relative_energy_error, default=None)
         if best is None:
             return "no symmetric, non-variational method to compare", "alone"
         ratio = relative_energy_error(v) / relative_energy_error(best)
-        return (f"symmetry alone kept it bounded too: no boundedness added, its largest error {ratio:.2g} × "
-                f"{best['integrator']}'s"), "nothing"
+        return (f"symmetry alone kept it bounded too ({', '.join(r['integrator'] for r in held)}): no boundedness "
+                f"added, its largest error {ratio:.2g} × {best['integrator']}'s"), "nothing"
     if held:
         return f"it grows where symmetry alone kept it bounded ({names})", "worse"
     return "it grows, as the symmetric ones do", "grows"

@@ -141,7 +141,7 @@ class Variational(unittest.TestCase):
         self.assertIn("symmetric, not variational: gauss2 (p = 0.02, ", para)
         self.assertIn("discrete gradient: dg2 (rounding, ", para)
         # both bounded: nothing added, dla2's largest error (1e-8 t^0.01) ten times gauss2's (1e-9 t^0.02) or so
-        self.assertIn("symmetry alone kept it bounded too: no boundedness added, its largest error", para)
+        self.assertIn("symmetry alone kept it bounded too (gauss2): no boundedness added, its largest error", para)
         self.assertIn("CPU dla2 1 s, gauss2 2 s, dg2 3 s.", para)
         hills = next(line for line in self.lines if line.startswith("- Variational structure, gaussian-hills:"))
         self.assertIn("it keeps the energy bounded where symmetry alone did not (gauss2)", hills)
@@ -154,6 +154,22 @@ class Variational(unittest.TestCase):
                                          "bounded where symmetry alone was not on gaussian-hills; bounded where "
                                          "symmetry alone is still undecided on gaussian-hills-chaplygin; nothing "
                                          "beyond symmetry on paraboloid.")
+
+    def test_one_bounded_symmetric_method_is_enough_for_symmetry_alone(self):
+        # beside a grown and an undecided symmetric method, one that stays bounded: nothing added on that scene
+        report = variational_report()
+        runs = report["horizon"]["runs"]
+        for scene in ("gaussian-hills", "gaussian-hills-chaplygin"):
+            held = dict(next(r for r in runs if r["scene"] == "paraboloid" and r["integrator"] == "gauss2"),
+                        scene=scene, integrator="lie-gauss2", family="lie-gauss", index=len(runs))
+            runs.append(held)
+        report["runs"] = list(report["runs"]) + [sweep_run(s, "lie-gauss2", 3e-15)
+                                                 for s in ("gaussian-hills", "gaussian-hills-chaplygin")]
+        lines = ladder.finding_lines(report)
+        for scene in ("gaussian-hills", "gaussian-hills-chaplygin"):
+            line = next(x for x in lines if x.startswith(f"- Variational structure, {scene}:"))
+            self.assertIn("symmetry alone kept it bounded too (lie-gauss2): no boundedness added", line)
+        self.assertIn("nothing beyond symmetry on paraboloid, gaussian-hills, gaussian-hills-chaplygin", lines[-1])
 
     def test_no_variational_run_no_line(self):
         self.assertFalse([line for line in ladder.finding_lines(ladder_report()) if "ariational" in line])
