@@ -19,14 +19,6 @@
 namespace rb {
 namespace {
 
-// the default preset's ladder shape: quarter steps 2^0 .. 2^-8, then 2^-9 .. 2^-to
-std::vector<double> ladder(int to) {
-  std::vector<double> h;
-  for (int k = 0; k <= 32; ++k) h.push_back(std::exp2(-k / 4.0));
-  for (int k = 9; k <= to; ++k) h.push_back(std::ldexp(1.0, -k));
-  return h;
-}
-
 std::size_t component(const std::string& name) {
   for (std::size_t i = 0; i < kErrorComponentCount; ++i)
     if (name == kErrorComponents[i].name) return i;

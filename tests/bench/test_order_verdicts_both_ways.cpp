@@ -21,14 +21,6 @@
 namespace rb {
 namespace {
 
-// the default preset's ladder shape: quarter steps 2^0 .. 2^-8, then 2^-9 .. 2^-to
-std::vector<double> ladder(int to) {
-  std::vector<double> h;
-  for (int k = 0; k <= 32; ++k) h.push_back(std::exp2(-k / 4.0));
-  for (int k = 9; k <= to; ++k) h.push_back(std::ldexp(1.0, -k));
-  return h;
-}
-
 TEST(OrderVerdictsBothWays, AnOrderLostAtSmallStepsFarAboveTheFloorIsNotCertified) {
   // the perturbed RK4: 1e-2 h^4 + 2.5e-6 h, of slope 1 below h ~ 0.03
   // at errors near 1e-8, four decades above the floor (1e-13)
