@@ -92,13 +92,13 @@ def _at_step(run):
 def _price(runs):
     """'cheapest under 1e-6: gauss2 at 4 h, 2.1 s CPU (3.0 × rk4's 0.7 s)' over a scene's study and price runs,
     or a sentence saying no run stays under."""
-    under = sorted((cpu_seconds(r), r["integrator"], horizon.coarsening(r), r) for r in runs
-                   if relative_energy_error(r) <= ENERGY_TARGET and math.isfinite(cpu_seconds(r)))
+    under = [r for r in runs if relative_energy_error(r) <= ENERGY_TARGET and math.isfinite(cpu_seconds(r))]
     if not under:
         steps = sorted({horizon.coarsening(r) for r in runs})
         tried = ", ".join("h" if k == 1 else f"{k} h" for k in steps)
         return f"no run keeps the relative energy error under {ENERGY_TARGET:.0e} (steps {tried})"
-    cpu, name, _, run = under[0]
+    run = min(under, key=lambda r: (cpu_seconds(r), r["integrator"], horizon.coarsening(r)))
+    cpu, name = cpu_seconds(run), run["integrator"]
     base = next((cpu_seconds(r) for r in runs if r["integrator"] == BASELINE and horizon.coarsening(r) == 1),
                 math.nan)
     ratio = f" ({cpu / base:.1f} × {BASELINE}'s {md.fmt(base)} s at h)" if math.isfinite(base) and base > 0 else ""

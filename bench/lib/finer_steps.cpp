@@ -50,11 +50,8 @@ std::vector<SweepTask> finer_step_tasks(const SweepSpec& spec, const std::vector
   for (const Key& key : keys) {
     const std::vector<FitRun>& runs = groups.at(key);
     std::vector<const FitRun*> group;
-    double smallest = kNaN;
-    for (const FitRun& r : runs) {
-      group.push_back(&r);
-      if (r.h > 0.0 && !(r.h >= smallest)) smallest = r.h;
-    }
+    for (const FitRun& r : runs) group.push_back(&r);
+    const double smallest = smallest_run.at(key)->h;  // a fixed-step run's h is > 0
     const SweepScene& s = scenes[key.first];
     // without a reference no run has an error, and none fails for that
     if (s.reference.points.empty()) continue;
