@@ -1,7 +1,8 @@
 #pragma once
-// A tableau's non-zero stage terms, as the tableau steppers (runge_kutta.cpp,
-// munthe_kaas.cpp) and the exponential products (exp_product_stages.hpp) sum
-// them in their step loops.
+// A tableau's non-zero stage terms, as every tableau stepper sums them in its
+// step loop: the fixed-step ones (runge_kutta.cpp, munthe_kaas.cpp), the
+// exponential products (exp_product_stages.hpp) and the embedded pairs
+// (flat_embedded.cpp, munthe_kaas_adaptive.cpp). The one stage-sum type.
 #include <array>
 #include <cstddef>
 
@@ -17,6 +18,11 @@ struct StageTerms {
     int count = 0;                           // non-zero terms
     std::array<int, kMaxStages> index{};     // j of each term, increasing
     std::array<double, kMaxStages> coeff{};  // a_ij (or b_j) of each term
+    Row() = default;
+    // the non-zero ones of the first count weights w[0..count)
+    Row(const double* w, int count) {
+      for (int j = 0; j < count; ++j) add(j, w[j]);
+    }
     void add(int j, double value) {
       if (value == 0.0) return;
       index[static_cast<std::size_t>(count)] = j;
@@ -65,6 +71,18 @@ struct StageTerms {
           out.noalias() = term(0) + term(1) + term(2) + term(3);
           for (std::size_t n = 4; n < static_cast<std::size_t>(count); ++n) out += term(n);
       }
+    }
+
+    // c_0 k[j_0] + c_1 k[j_1] + ..., summed from zero before any step size
+    // scales it: the embedded pairs' order of operations (their stage is
+    // y + h * combination, their error h * combination), which rounds
+    // differently from sum() above.
+    template <class V, class K>
+    [[gnu::always_inline]] V combination(const K& k) const {
+      V out = V::Zero();
+      for (std::size_t n = 0; n < static_cast<std::size_t>(count); ++n)
+        out += coeff[n] * k[static_cast<std::size_t>(index[n])];
+      return out;
     }
 
    private:

@@ -8,15 +8,18 @@
 
 #include "integrators/controllers/controller.hpp"
 #include "integrators/steppers/adaptive_method.hpp"
+#include "integrators/steppers/embedded_pair.hpp"
+#include "integrators/steppers/error_norm.hpp"
 #include "integrators/steppers/exp_product_stages.hpp"
 
 namespace rb {
 
 namespace {
 
-// The pair's steps for drive_adaptive (integrators/driver.hpp): an error
-// norm for the controller, which decides.
-class ExpPairStepper {
+// The pair's steps for drive_adaptive (integrators/driver.hpp), on the
+// shared try/accept skeleton: an error norm for the controller, which
+// decides.
+class ExpPairStepper : public EmbeddedPair<ExpPairStepper> {
  public:
   static constexpr bool dense_output = false;
 
@@ -30,36 +33,35 @@ class ExpPairStepper {
 
   int error_order() const { return error_order_; }
 
-  // The error norm of a step of h (NaN when the step is not finite); the
-  // step is kept in R_new_, dz_new_ for accept.
-  double try_step(double /*t*/, double h, Cost& cost) {
-    if (!have_first_) {
-      stage_lie_rhs(*problem_, R_, z_.data(), K_[0].data(), L_[0].data(), cost);
-      ++cost.rhs_evals;
-      have_first_ = true;
-    }
+  void first_stage(Cost& cost) {
+    stage_lie_rhs(*problem_, R_, z_.data(), K_[0].data(), L_[0].data(), cost);
+    ++cost.rhs_evals;
+  }
+
+  // the step kept in R_new_, dz_new_ for commit
+  double attempt(double h, Cost& cost) {
     step_.later_stages(R_, z_, h, cost);
     R_new_ = step_.apply(step_.plan.update, R_, h, cost);
     const Mat3 R_low = step_.apply(step_.plan.embedded, R_, h, cost);
     step_.plan.z_update.sum(dz_new_, h, L_);
     ZState dz_low;
     step_.plan.z_embedded.sum(dz_low, h, L_);
-    if (!(R_new_.allFinite() && dz_new_.allFinite() && R_low.allFinite() && dz_low.allFinite()))
-      return std::numeric_limits<double>::quiet_NaN();
+    finite_ = R_new_.allFinite() && dz_new_.allFinite() && R_low.allFinite() && dz_low.allFinite();
+    if (!finite_) return std::numeric_limits<double>::quiet_NaN();
     // vee of the skew part of R_high R_low^T
     const Mat3 D = R_new_ * R_low.transpose();
     const Vec3 e_rot(D(2, 1) - D(1, 2), D(0, 2) - D(2, 0), D(1, 0) - D(0, 1));
-    const ZState z_new = z_ + dz_new_;
-    const ZState z_scale = (tol_.atol + tol_.rtol * z_.cwiseAbs().cwiseMax(z_new.cwiseAbs()).array()).matrix();
-    const double sum = (0.5 * e_rot / (tol_.atol + tol_.rtol)).squaredNorm() +
-                       ((dz_new_ - dz_low).array() / z_scale.array()).square().sum();
-    return std::sqrt(sum / static_cast<double>(3 + kZSize));
+    const double rotation = (0.5 * e_rot / rotation_scale(tol_)).squaredNorm();
+    return rms_error(rotation + scaled_squares(ZState(dz_new_ - dz_low), value_scale(tol_, z_, ZState(z_ + dz_new_))),
+                     3 + kZSize);
   }
+  bool tried_finite() const { return finite_; }
 
-  void accept(double /*t*/, double /*h*/, Cost& /*cost*/) {
+  // the next attempt starts at the new state
+  bool commit(double /*t*/, double /*h*/, Cost& /*cost*/) {
     R_ = R_new_;
     z_ += dz_new_;
-    have_first_ = false;  // the next attempt starts at the new state
+    return false;
   }
 
   void state(FlatState& y) const {
@@ -67,13 +69,10 @@ class ExpPairStepper {
     y.tail<kZSize>() = z_;
   }
   void interpolate(double, FlatState& y) const { state(y); }
-  // back to y, the state before the step the driver refused after
-  // accepting it (its path went beyond a limit): state() wrote it from
-  // R_ and z_, so they come back bit for bit
-  void restore(const FlatState& y) {
+  // state() wrote y from R_ and z_, so they come back bit for bit
+  void go_back(const FlatState& y) {
     R_ = rotation_of(y);
     z_ = z_of(y);
-    have_first_ = false;
   }
 
  private:
@@ -86,7 +85,7 @@ class ExpPairStepper {
   Tolerances tol_;
   Mat3 R_, R_new_;
   ZState z_, dz_new_;
-  bool have_first_ = false;
+  bool finite_ = false;  // the step tried last is finite
 };
 
 }  // namespace

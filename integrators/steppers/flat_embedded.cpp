@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 
+#include "integrators/stage_terms.hpp"
 #include "integrators/steppers/adaptive_method.hpp"
+#include "integrators/steppers/embedded_pair.hpp"
+#include "integrators/steppers/error_norm.hpp"
 #include "integrators/steppers/tableau_methods.hpp"
 #include "problems/input_error.hpp"
 
@@ -13,9 +15,10 @@ namespace rb {
 
 namespace {
 
-// The pair's steps for drive_adaptive (integrators/driver.hpp): an error
-// norm for the controller, which decides.
-class FlatPairStepper {
+// The pair's steps for drive_adaptive (integrators/driver.hpp), on the
+// shared try/accept skeleton: an error norm for the controller, which
+// decides.
+class FlatPairStepper : public EmbeddedPair<FlatPairStepper> {
  public:
   static constexpr bool dense_output = false;
 
@@ -25,64 +28,51 @@ class FlatPairStepper {
         tol_(tol),
         y_(problem.y0()),
         attempt_(tableau.attempt_stages()),
-        fsal_in_attempt_(tableau.fsal_in_attempt()) {}
+        fsal_in_attempt_(tableau.fsal_in_attempt()),
+        b_(tableau.b_weights().data(), attempt_),
+        e_(tableau.e().data(), attempt_) {
+    for (int i = 1; i < attempt_; ++i)
+      rows_[static_cast<std::size_t>(i)] =
+          StageTerms::Row(&tableau.a_row_major()[static_cast<std::size_t>(i * tableau.total_stages())], i);
+  }
 
   int error_order() const { return tableau_->error_order(); }
 
-  // The error norm of a step of h (NaN when the step is not finite); the
-  // step is kept in y_new_ for accept.
-  double try_step(double /*t*/, double h, Cost& cost) {
-    if (!have_first_) {
-      stage_flat_rhs(*problem_, y_.data(), k_[0].data(), cost);
-      ++cost.rhs_evals;
-      have_first_ = true;
-    }
-    // the attempt's stages; the FSAL stage (if among them) is at y_new
-    // itself, whose sum y + h sum b_j k_j is the same sum as its row's
+  void first_stage(Cost& cost) {
+    stage_flat_rhs(*problem_, y_.data(), k_[0].data(), cost);
+    ++cost.rhs_evals;
+  }
+
+  // the attempt's stages; the FSAL stage (if among them) is at y_new
+  // itself, whose sum y + h sum b_j k_j is the same sum as its row's
+  double attempt(double h, Cost& cost) {
     for (int i = 1; i < attempt_; ++i) {
-      stage_ = y_ + h * combine(row(i), i);
+      stage_ = y_ + h * rows_[static_cast<std::size_t>(i)].combination<FlatState>(k_);
       stage_flat_rhs(*problem_, stage_.data(), k_[static_cast<std::size_t>(i)].data(), cost);
       ++cost.rhs_evals;
     }
-    y_new_ = y_ + h * combine(tableau_->b_weights().data(), attempt_);
-    return y_new_.allFinite() ? error_norm(h) : std::numeric_limits<double>::quiet_NaN();
+    y_new_ = y_ + h * b_.combination<FlatState>(k_);
+    return error_norm(h);
   }
+  bool tried_finite() const { return y_new_.allFinite(); }
 
-  void accept(double /*t*/, double /*h*/, Cost& /*cost*/) {
+  // the next step's first stage: the FSAL stage, or evaluated by the next
+  // attempt (so that its margins are that attempt's)
+  bool commit(double /*t*/, double /*h*/, Cost& /*cost*/) {
     y_ = y_new_;
-    // the next step's first stage: the FSAL stage, or evaluated by the next
-    // attempt (so that its margins are that attempt's)
-    if (fsal_in_attempt_) k_[0] = k_[static_cast<std::size_t>(*tableau_->fsal_stage())];
-    else have_first_ = false;
+    if (!fsal_in_attempt_) return false;
+    k_[0] = k_[static_cast<std::size_t>(*tableau_->fsal_stage())];
+    return true;
   }
 
   void state(FlatState& y) const { y = y_; }
   void interpolate(double, FlatState& y) const { y = y_; }
-  // back to y, the state before the step the driver refused after
-  // accepting it (its path went beyond a limit); the first stage there is
-  // evaluated again by the next attempt
-  void restore(const FlatState& y) {
-    y_ = y;
-    have_first_ = false;
-  }
+  void go_back(const FlatState& y) { y_ = y; }
 
  private:
-  // sum_j w_j k_j over the first count stages
-  FlatState combine(const double* w, int count) const {
-    FlatState sum = FlatState::Zero();
-    for (int j = 0; j < count; ++j)
-      if (w[j] != 0.0) sum += w[j] * k_[static_cast<std::size_t>(j)];
-    return sum;
-  }
-
-  const double* row(int i) const {
-    return &tableau_->a_row_major()[static_cast<std::size_t>(i * tableau_->total_stages())];
-  }
-
   double error_norm(double h) const {
-    const FlatState scale = (tol_.atol + tol_.rtol * y_.cwiseAbs().cwiseMax(y_new_.cwiseAbs()).array()).matrix();
-    const FlatState e = h * combine(tableau_->e().data(), attempt_);
-    return std::sqrt((e.array() / scale.array()).square().sum() / static_cast<double>(kFlatSize));
+    const FlatState e = h * e_.combination<FlatState>(k_);
+    return rms_error(scaled_squares(e, value_scale(tol_, y_, y_new_)), kFlatSize);
   }
 
   const Problem* problem_;
@@ -91,8 +81,9 @@ class FlatPairStepper {
   FlatState y_, y_new_, stage_;
   int attempt_;  // the stages of an attempt
   bool fsal_in_attempt_;
+  std::array<StageTerms::Row, kMaxStages> rows_;  // a's rows of the attempt's stages
+  StageTerms::Row b_, e_;
   std::array<FlatState, kMaxStages> k_;
-  bool have_first_ = false;
 };
 
 }  // namespace

@@ -7,7 +7,10 @@
 #include <limits>
 #include <vector>
 
+#include "integrators/stage_terms.hpp"
 #include "integrators/steppers/adaptive_method.hpp"
+#include "integrators/steppers/embedded_pair.hpp"
+#include "integrators/steppers/error_norm.hpp"
 #include "integrators/steppers/tableau_methods.hpp"
 #include "problems/so3.hpp"
 
@@ -18,29 +21,14 @@ namespace {
 // (u, z) stacked: a stage's (dexpinv_u(omega), G(z)), or a step's increment
 // (u, z - z_n). The pair works on this vector as on any ODE's state.
 using LieVec = Eigen::Matrix<double, 3 + kZSize, 1>;
-constexpr double kLieSize = 3 + kZSize;
+constexpr int kLieSize = 3 + kZSize;
 
-// Weights with their zeros left out: the stage loops skip them without a
-// branch (DP853's rows are half zeros).
-struct SparseWeights {
-  int n = 0;
-  std::array<int, kMaxStages> index{};
-  std::array<double, kMaxStages> value{};
-  SparseWeights() = default;
-  SparseWeights(const double* w, int count) {
-    for (int j = 0; j < count; ++j)
-      if (w[j] != 0.0) {
-        index[static_cast<std::size_t>(n)] = j;
-        value[static_cast<std::size_t>(n++)] = w[j];
-      }
-  }
-};
-
-// The pair's steps for drive_adaptive (integrators/driver.hpp): an error
-// estimate for the controller, which decides. General: the ball has
+// The pair's steps for drive_adaptive (integrators/driver.hpp), on the
+// shared try/accept skeleton: an error estimate for the controller, which
+// decides. General: the ball has
 // inertia (RollingBall::has_inertia()), so that its evaluation is inlined.
 template <bool Dense, bool General>
-class LieStepper {
+class LieStepper : public EmbeddedPair<LieStepper<Dense, General>> {
  public:
   static constexpr bool dense_output = Dense;
 
@@ -57,36 +45,34 @@ class LieStepper {
     const int total = tableau.total_stages();
     for (int i = 0; i < total; ++i)
       rows_[static_cast<std::size_t>(i)] =
-          SparseWeights(&tableau.a_row_major()[static_cast<std::size_t>(i * total)], i);
-    b_ = SparseWeights(tableau.b_weights().data(), attempt_);
-    e_ = SparseWeights(tableau.e().data(), attempt_);
-    if (!tableau.e_stretched().empty()) e3_ = SparseWeights(tableau.e_stretched().data(), attempt_);
+          StageTerms::Row(&tableau.a_row_major()[static_cast<std::size_t>(i * total)], i);
+    b_ = StageTerms::Row(tableau.b_weights().data(), attempt_);
+    e_ = StageTerms::Row(tableau.e().data(), attempt_);
+    if (!tableau.e_stretched().empty()) e3_ = StageTerms::Row(tableau.e_stretched().data(), attempt_);
     if constexpr (Dense) dense_y_.reserve(8);
   }
 
   int error_order() const { return tableau_->error_order(); }
 
-  // The error norm of a step of h (NaN when the step is not finite); the
-  // step is kept in w_new_ for accept.
-  double try_step(double /*t*/, double h, Cost& cost) {
-    if (!have_first_) {
-      stage_lie_rhs_on_path<General>(*problem_, R_, z_.data(), omega_first_.data(), g_first_.data(), cost);
-      ++cost.rhs_evals;
-      have_first_ = true;
-    }
+  void first_stage(Cost& cost) {
+    stage_lie_rhs_on_path<General>(*problem_, R_, z_.data(), omega_first_.data(), g_first_.data(), cost);
+    ++cost.rhs_evals;
+  }
+
+  // the step (u_n+1, z_n+1 - z_n) kept in w_new_ for commit
+  double attempt(double h, Cost& cost) {
     set_stage(0, omega_first_, g_first_);
     for (int i = 1; i < attempt_; ++i) evaluate_stage(i, h, R_, z_, cost);
-    // the step: (u_n+1, z_n+1 - z_n)
     if (fsal_in_attempt_) {
       w_new_ = w_fsal_;
     } else {
       w_new_ = combine(b_, h);
     }
-    const double err = error_norm(w_new_, h);
-    return w_new_.allFinite() ? err : std::numeric_limits<double>::quiet_NaN();
+    return error_norm(w_new_, h);
   }
+  bool tried_finite() const { return w_new_.allFinite(); }
 
-  void accept(double t, double h, Cost& cost) {
+  bool commit(double t, double h, Cost& cost) {
     R_prev_ = R_;
     z_prev_ = z_;
     R_ = so3_exp(w_new_.head<3>()) * R_prev_;
@@ -99,10 +85,10 @@ class LieStepper {
     } else {
       // its margins stay in cost.watch for the driver's look after the
       // next attempt, whose first stage this is
-      stage_lie_rhs_on_path<General>(*problem_, R_, z_.data(), omega_first_.data(), g_first_.data(), cost);
-      ++cost.rhs_evals;
+      first_stage(cost);
     }
     if constexpr (Dense) dense_outputs(t, h, w_new_, cost);
+    return true;
   }
 
   void state(FlatState& y) const {
@@ -110,12 +96,10 @@ class LieStepper {
     y.tail<kZSize>() = z_;
   }
   // back to the step's start after the driver refused the step accepted
-  // last (its dense output went beyond a limit); the first stage there is
-  // evaluated again by the next attempt
-  void restore(const FlatState& /*y, kept as R_prev_, z_prev_*/) {
+  // last (its dense output went beyond a limit)
+  void go_back(const FlatState& /*y, kept as R_prev_, z_prev_*/) {
     R_ = R_prev_;
     z_ = z_prev_;
-    have_first_ = false;
   }
 
   // The outputs were computed in attempt (they cost stages and exps, counted
@@ -133,13 +117,8 @@ class LieStepper {
  private:
   // h sum_j w_j k_j. Inlined (some of its calls were out of line: 256
   // instructions a step of rkmk-f78-adaptive ran there).
-  [[gnu::always_inline]] LieVec combine(const SparseWeights& w, double h) const {
-    LieVec sum = LieVec::Zero();
-    for (int m = 0; m < w.n; ++m) {
-      const auto um = static_cast<std::size_t>(m);
-      sum += w.value[um] * k_[static_cast<std::size_t>(w.index[um])];
-    }
-    return h * sum;
+  [[gnu::always_inline]] LieVec combine(const StageTerms::Row& w, double h) const {
+    return h * w.combination<LieVec>(k_);
   }
 
   // k_i = (u', z'), by parts rather than by Eigen's comma initializer
@@ -177,14 +156,11 @@ class LieStepper {
   // (Hairer's stretched combination of two estimates for DP853).
   double error_norm(const LieVec& w_new, double h) const {
     LieVec scale;
-    scale.head<3>().setConstant(tol_.atol + tol_.rtol);
-    scale.tail<kZSize>() =
-        (tol_.atol + tol_.rtol * z_.cwiseAbs().cwiseMax((z_ + w_new.tail<kZSize>()).cwiseAbs()).array()).matrix();
-    const double e2 = (combine(e_, h).array() / scale.array()).square().sum();
-    if (e3_.n == 0) return std::sqrt(e2 / kLieSize);
-    const double e3 = (combine(e3_, h).array() / scale.array()).square().sum();
-    if (e2 == 0.0 && e3 == 0.0) return 0.0;
-    return e2 / std::sqrt((e2 + 0.01 * e3) * kLieSize);
+    scale.head<3>().setConstant(rotation_scale(tol_));
+    scale.tail<kZSize>() = value_scale(tol_, z_, ZState(z_ + w_new.tail<kZSize>()));
+    const double e2 = scaled_squares(combine(e_, h), scale);
+    if (e3_.count == 0) return rms_error(e2, kLieSize);
+    return stretched_rms_error(e2, scaled_squares(combine(e3_, h), scale), kLieSize);
   }
 
   // Every output strictly inside (t, t + h): the extra stages once, then
@@ -233,13 +209,12 @@ class LieStepper {
   Mat3 R_, R_prev_;
   ZState z_, z_prev_;
   std::array<LieVec, kMaxStages> k_;
-  std::array<SparseWeights, kMaxStages> rows_;
-  SparseWeights b_, e_, e3_;
+  std::array<StageTerms::Row, kMaxStages> rows_;
+  StageTerms::Row b_, e_, e3_;
   Vec3 omega_first_, omega_fsal_;  // omega at the step's start; at the FSAL stage
   ZState g_first_;
   LieVec w_fsal_;
   LieVec w_new_;  // the step tried last
-  bool have_first_ = false;
   std::size_t next_out_ = 0;
   std::vector<double> dense_t_;
   std::vector<FlatState> dense_y_;

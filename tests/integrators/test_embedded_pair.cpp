@@ -1,0 +1,110 @@
+// The embedded pairs' shared parts: the try/accept skeleton (when the first
+// stage is evaluated), the error norm against its closed form, and the one
+// stage-sum type's combination.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "integrators/stage_terms.hpp"
+#include "integrators/steppers/embedded_pair.hpp"
+#include "integrators/steppers/error_norm.hpp"
+
+namespace rb {
+namespace {
+
+// A pair that records what the skeleton asks of it.
+class CountingPair : public EmbeddedPair<CountingPair> {
+ public:
+  int first_stages = 0, attempts = 0, commits = 0, backs = 0;
+  bool fsal = false;   // commit has the next first stage
+  bool finite = true;  // the next attempt's step is finite
+  double error = 0.5;  // the next attempt's error norm
+  void first_stage(Cost& cost) {
+    ++first_stages;
+    ++cost.rhs_evals;
+  }
+  double attempt(double, Cost&) {
+    ++attempts;
+    return error;
+  }
+  bool tried_finite() const { return finite; }
+  bool commit(double, double, Cost&) {
+    ++commits;
+    return fsal;
+  }
+  void go_back(const FlatState&) { ++backs; }
+};
+
+TEST(EmbeddedPair, TheFirstStageIsEvaluatedOnceUntilAStepIsAccepted) {
+  CountingPair pair;
+  Cost cost;
+  EXPECT_EQ(pair.try_step(0.0, 0.1, cost), 0.5);
+  EXPECT_EQ(pair.try_step(0.0, 0.05, cost), 0.5);  // a rejected attempt's retry reuses it
+  EXPECT_EQ(pair.first_stages, 1);
+  EXPECT_EQ(pair.attempts, 2);
+  pair.accept(0.0, 0.05, cost);
+  pair.try_step(0.05, 0.05, cost);
+  EXPECT_EQ(pair.first_stages, 2);  // no FSAL: evaluated again at the new state
+  EXPECT_EQ(cost.rhs_evals, 2);
+}
+
+TEST(EmbeddedPair, AnFsalPairSkipsTheFirstStageAfterAcceptingButNotAfterGoingBack) {
+  CountingPair pair;
+  pair.fsal = true;
+  Cost cost;
+  pair.try_step(0.0, 0.1, cost);
+  pair.accept(0.0, 0.1, cost);
+  pair.try_step(0.1, 0.1, cost);
+  EXPECT_EQ(pair.first_stages, 1);
+  pair.restore(FlatState::Zero());
+  EXPECT_EQ(pair.backs, 1);
+  pair.try_step(0.1, 0.1, cost);
+  EXPECT_EQ(pair.first_stages, 2);
+}
+
+TEST(EmbeddedPair, AStepThatIsNotFiniteHasNoErrorNorm) {
+  CountingPair pair;
+  Cost cost;
+  pair.finite = false;
+  EXPECT_TRUE(std::isnan(pair.try_step(0.0, 0.1, cost)));
+  pair.finite = true;
+  pair.error = std::numeric_limits<double>::infinity();  // the norm's own overflow is the controller's to see
+  EXPECT_TRUE(std::isinf(pair.try_step(0.0, 0.1, cost)));
+}
+
+TEST(ErrorNorm, IsTheRootMeanSquareOfEachComponentAgainstItsOwnScale) {
+  const Tolerances tol{.rtol = 0.5, .atol = 0.25};
+  using V = Eigen::Vector3d;
+  const V y(1.0, -2.0, 0.0), y_new(-3.0, 1.0, 0.0);
+  const V scale = value_scale(tol, y, y_new);
+  EXPECT_EQ(scale, V(0.25 + 0.5 * 3.0, 0.25 + 0.5 * 2.0, 0.25));
+  const V e(1.75, -2.5, 0.5);  // 1, -2 and 2 scales
+  EXPECT_DOUBLE_EQ(scaled_squares(e, scale), 1.0 + 4.0 + 4.0);
+  EXPECT_DOUBLE_EQ(rms_error(scaled_squares(e, scale), 3), std::sqrt(3.0));
+  EXPECT_EQ(rotation_scale(tol), 0.75);
+}
+
+TEST(ErrorNorm, TheStretchedCombinationIsHairersDop853) {
+  // e2 / sqrt((e2 + e3 / 100) n): 4 / sqrt((4 + 96 / 100) 8)
+  EXPECT_DOUBLE_EQ(stretched_rms_error(4.0, 96.0, 8), 4.0 / std::sqrt(4.96 * 8.0));
+  EXPECT_EQ(stretched_rms_error(0.0, 0.0, 8), 0.0);
+  // a small e3 leaves the plain estimate's sqrt(e2 / n)
+  EXPECT_NEAR(stretched_rms_error(4.0, 0.0, 8), std::sqrt(4.0 / 8.0), 1e-15);
+}
+
+TEST(StageSums, ARowKeepsItsNonZeroWeightsAndCombinesThemBeforeAnyStepScalesThem) {
+  const std::vector<double> w = {0.5, 0.0, -0.25, 0.0, 2.0};
+  const StageTerms::Row row(w.data(), 5);
+  ASSERT_EQ(row.count, 3);
+  EXPECT_EQ(row.index[1], 2);
+  std::array<Eigen::Vector2d, kMaxStages> k;
+  for (std::size_t j = 0; j < 5; ++j) k[j] = Eigen::Vector2d(1.0 + static_cast<double>(j), -1.0);
+  k[1] = k[3] = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());  // never read
+  const Eigen::Vector2d sum = row.combination<Eigen::Vector2d>(k);
+  EXPECT_EQ(sum, Eigen::Vector2d(0.5 * 1.0 - 0.25 * 3.0 + 2.0 * 5.0, -0.5 + 0.25 - 2.0));
+}
+
+}  // namespace
+}  // namespace rb
