@@ -349,8 +349,8 @@ int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_
   const std::vector<rb::RunRecord> runs = rb::run_sweep(spec, scenes, progress);
   const rb::StabilityResults stability = rb::run_stability(spec, progress);
   const rb::HorizonResults horizon = rb::run_horizon(spec, progress);
-  const nlohmann::json report = rb::make_report(spec, scenes, runs, stability, horizon);
-  write_json(report, a.out);
+  const rb::Report report = rb::make_report(spec, scenes, runs, stability, horizon);
+  write_json(rb::to_json(report), a.out);
   std::printf("%s", rb::summary_table(report).c_str());
   std::printf("report written to %s\n", a.out.c_str());
   return 0;
@@ -369,7 +369,7 @@ int run_score(const ScoreArgs& a) {
     if (a.out.empty()) throw rb::InputError("the report needs --out FILE", "out");
     const nlohmann::json report = rb::score_peers(a.peers, a.into, a.cache);
     write_json(report, a.out);
-    std::printf("%s", rb::summary_table(report).c_str());
+    std::printf("%s", rb::summary_table(rb::report_from_json(report, a.out)).c_str());
     std::printf("report with the runs of %s written to %s\n", a.peers.c_str(), a.out.c_str());
     return 0;
   }
@@ -400,9 +400,9 @@ int run_score(const ScoreArgs& a) {
 }
 
 int run_merge(const std::vector<std::string>& inputs, const std::string& out) {
-  std::vector<nlohmann::json> shards;
-  for (const std::string& path : inputs) shards.push_back(rb::read_report(path));
-  write_json(rb::merge_reports(shards, inputs), out);
+  std::vector<rb::Report> shards;  // each file read once, named in what it lacks
+  for (const std::string& path : inputs) shards.push_back(rb::report_from_json(rb::read_report(path), path));
+  write_json(rb::to_json(rb::merge_reports(shards)), out);
   std::printf("merged %zu reports into %s\n", inputs.size(), out.c_str());
   return 0;
 }

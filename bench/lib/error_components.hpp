@@ -28,6 +28,10 @@ inline constexpr std::array<ErrorComponent, 4> kErrorComponents{{
 
 inline constexpr std::size_t kErrorComponentCount = kErrorComponents.size();
 
+// The component an order's "fit" and the summary table's order column show:
+// the first, the contact point.
+inline constexpr std::size_t kHeadlineComponent = 0;
+
 // The scale's name in the report: "radius", "omega_scale" or "1".
 inline const char* scale_name(ErrorScale s) {
   switch (s) {

@@ -234,7 +234,7 @@ json score_peers(const std::string& peers_path, const std::string& into, const s
     report_runs.push_back(j);
     fit_input.push_back(fit_run(r));
   }
-  report["tolerance_fits"] = fit_tolerances(fit_input);
+  report["tolerance_fits"] = tolerance_fits_json(fit_tolerances(fit_input));
   report["error_components"] = error_components_json();  // what the peer's runs were measured in
   json entry = {{"peer", peer}, {"file", peers_path}};
   for (const char* key : {"versions", "library", "abi_version", "timing", "rhs_cost"})

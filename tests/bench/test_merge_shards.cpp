@@ -120,6 +120,42 @@ TEST(MergeShards, ARunTheFitsCannotReadNamesItsFileAndKey) {
             "'reports': the report 'shard report 1': references[0].component_errors.omega is not a number or null");
 }
 
+// A shard's orders and tolerance fits are fitted again in the merge, but
+// what a report holds must read: a wrong one is named by file and key.
+TEST(MergeShards, AnOrderOrToleranceFitThatDoesNotReadNamesItsFileAndKey) {
+  const json order = orders_json({ReportOrder{"plane", "rk4", 4, 4, {}}}).at(0);
+  ToleranceFit tolerance{"plane", "rk45", {}, {}};
+  tolerance.line.slope = 1.0;
+  const json fit = tolerance_fits_json({tolerance}).at(0);
+  const auto merged_with = [](const char* key, const json& entry) {
+    json second = empty_shard(1, 2);
+    second[key] = json::array({entry});
+    return merge_error({empty_shard(0, 2), second});
+  };
+  EXPECT_EQ(merged_with("orders", order), "(merged)");
+  EXPECT_EQ(merged_with("tolerance_fits", fit), "(merged)");
+  json text_slope = order;
+  text_slope["fits"]["omega"]["slope"] = "2";
+  EXPECT_EQ(merged_with("orders", text_slope),
+            "'reports': the report 'shard report 1': orders[0].fits.omega.slope is not a number or null");
+  json no_self = order;
+  no_self["self_convergence"].erase("rotation");
+  EXPECT_EQ(merged_with("orders", no_self),
+            "'reports': the report 'shard report 1': orders[0].self_convergence.rotation is missing");
+  json bad_reason = order;
+  bad_reason["inconclusive_reason"]["centre"] = 3;
+  EXPECT_EQ(merged_with("orders", bad_reason),
+            "'reports': the report 'shard report 1': orders[0].inconclusive_reason.centre is not a string or null");
+  json no_points = fit;
+  no_points["step_order"].erase("points");
+  EXPECT_EQ(merged_with("tolerance_fits", no_points),
+            "'reports': the report 'shard report 1': tolerance_fits[0].step_order.points is missing");
+  json not_a_list = empty_shard(1, 2);
+  not_a_list["orders"] = json::object();
+  EXPECT_EQ(merge_error({empty_shard(0, 2), not_a_list}),
+            "'reports': the report 'shard report 1': 'orders' is not a list");
+}
+
 // The merged report lists the components as a sweep's does.
 TEST(MergeShards, TheMergedReportListsTheErrorComponents) {
   const json merged = merge_reports({empty_shard(1, 2), empty_shard(0, 2)});

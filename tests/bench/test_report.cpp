@@ -20,15 +20,22 @@ SweepSpec quick_once() {
   return spec;
 }
 
-json run_report(const SweepSpec& spec) {
+Report run_typed_report(const SweepSpec& spec) {
   const auto quiet = [](const std::string&) {};
   const std::vector<SweepScene> scenes = prepare_scenes(spec);
   const std::vector<RunRecord> runs = run_sweep(spec, scenes, quiet);
   return make_report(spec, scenes, runs, run_stability(spec, quiet));
 }
 
+json run_report(const SweepSpec& spec) { return to_json(run_typed_report(spec)); }
+
+const Report& quick_typed_report() {
+  static const Report report = run_typed_report(quick_once());
+  return report;
+}
+
 const json& quick_report() {
-  static const json report = run_report(quick_once());
+  static const json report = to_json(quick_typed_report());
   return report;
 }
 
@@ -127,8 +134,36 @@ TEST(Report, TheReportListsItsErrorComponentsAndItsFitsReadThemBack) {
   ReferenceFloors floors;
   for (const json& ref : again["references"]) floors[ref["scene"]] = order_scale_of(ref);
   const std::vector<FitRun> runs = fit_runs_of(again["runs"], "quick.json");
-  EXPECT_EQ(fit_orders(runs, floors), again["orders"]);
-  EXPECT_EQ(fit_tolerances(runs), again["tolerance_fits"]);
+  EXPECT_EQ(orders_json(fit_orders(runs, floors)), again["orders"]);
+  EXPECT_EQ(tolerance_fits_json(fit_tolerances(runs)), again["tolerance_fits"]);
+}
+
+// A report read back (what merge and score --peers read) writes the JSON it
+// was read from, and its summary table is the sweep's own.
+TEST(Report, AReportReadBackWritesItselfAndTheSameSummary) {
+  const json written = json::parse(quick_report().dump());
+  const Report again = report_from_json(written, "quick.json");
+  EXPECT_EQ(json::parse(to_json(again).dump()), written);
+  ASSERT_EQ(again.runs.size(), quick_typed_report().runs.size());
+  ASSERT_EQ(again.orders.size(), quick_typed_report().orders.size());
+  const std::string table = summary_table(quick_typed_report());
+  EXPECT_EQ(summary_table(again), table);
+  // a row per (scene, integrator), its order the contact point's observed slope
+  std::vector<std::pair<std::string, std::string>> keys;
+  for (const json& run : written["runs"]) {
+    const std::pair<std::string, std::string> key{run["scene"], run["integrator"]};
+    if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+  }
+  EXPECT_EQ(static_cast<std::size_t>(std::count(table.begin(), table.end(), '\n')), keys.size() + 2);
+  for (const json& o : written["orders"]) {
+    if (!o["observed"]["contact"].is_number()) continue;
+    char order[32];
+    std::snprintf(order, sizeof order, "%.2f", o["observed"]["contact"].get<double>());
+    char start[128];
+    std::snprintf(start, sizeof start, "%-16s %-28s %9s", o["scene"].get<std::string>().c_str(),
+                  o["integrator"].get<std::string>().c_str(), order);
+    EXPECT_NE(table.find(start), std::string::npos) << start;
+  }
 }
 
 double observed(const json& report, const std::string& scene, const std::string& integrator, const char* component) {
