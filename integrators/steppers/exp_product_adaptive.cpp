@@ -14,7 +14,7 @@ namespace rb {
 
 namespace {
 
-// The pair's steps for drive_adaptive (integrators/driver.hpp): an error
+// The pair's steps for drive_estimating (integrators/adaptive_loops.hpp): an error
 // norm for the controller, which decides.
 class ExpPairStepper {
  public:

@@ -36,7 +36,7 @@ struct SparseWeights {
   }
 };
 
-// The pair's steps for drive_adaptive (integrators/driver.hpp): an error
+// The pair's steps for drive_estimating (integrators/adaptive_loops.hpp): an error
 // estimate for the controller, which decides. General: the ball has
 // inertia (RollingBall::has_inertia()), so that its evaluation is inlined.
 template <bool Dense, bool General>
