@@ -71,6 +71,13 @@ std::string underflow_message(double h, double t) {
   return text;
 }
 
+StepFailure nonfinite_failure(double t, int trials, double h) {
+  char text[160];
+  std::snprintf(text, sizeof text, "the state is not finite beyond t = %.9g (%d trial steps past it, the last of %.3g)",
+                t, trials, h);
+  return StepFailure(Status::diverged, text);
+}
+
 double initial_step(const Problem& problem, const FlatState& y0, const Tolerances& tol, int order, double span,
                     Cost& cost) {
   // root-mean-square norm weighted by the tolerances

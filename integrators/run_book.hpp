@@ -1,6 +1,6 @@
 #pragma once
 // What a run is made of besides stepping, shared by the driver's loops
-// (integrators/driver.hpp): the output times, the step budget, the model's
+// (integrators/driver.hpp, integrators/adaptive_loops.hpp): the output times, the step budget, the model's
 // checks with their count, and the ways a run ends.
 #include <stdexcept>
 #include <string>
@@ -47,7 +47,7 @@ class StepFailure : public std::runtime_error {
   Status status_;
 };
 
-// What both loops keep of a run: its outputs, its result so far and the ways
+// What every loop keeps of a run: its outputs, its result so far and the ways
 // it ends.
 class RunBook {
  public:
@@ -67,6 +67,15 @@ class RunBook {
   // rows may be many.
   RunResult stop(Status why, const std::string& reason, const FlatState& last_valid, double t_valid) {
     return std::move(run_.stopped(why, reason, last_valid, t_valid));
+  }
+  // Ends the run at the state before the current one (the current one found
+  // beyond the model's limits by v), without the rows recorded after it.
+  RunResult stop_before(const Validity& v, const FlatState& y_before, double t_before) {
+    while (!run_.output.t.empty() && run_.output.t.back() > t_before) {
+      run_.output.t.pop_back();
+      run_.output.y.pop_back();
+    }
+    return stop(v.status, v.reason, y_before, t_before);
   }
   RunResult stop_over_budget(const FlatState& y, double t) {
     return stop(Status::max_steps, "reached max_steps = " + std::to_string(max_steps_), y, t);

@@ -1,9 +1,10 @@
 #pragma once
 // An adaptive integrator made of parts, as SteppedMethod is a fixed-step
 // one: its facts (MethodInfo) and an error-estimating stepper (try_step /
-// accept, integrators/driver.hpp), run by drive_adaptive with a controller:
-// the method's default (MethodInfo::controller, "pi" unless given) or the
-// run's (RunOptions::controller, `--controller`).
+// accept, integrators/adaptive_loops.hpp), run by drive_estimating composed
+// with a FilterController made for the run: the method's default
+// (MethodInfo::controller, "pi" unless given) or the run's
+// (RunOptions::controller, `--controller`).
 //
 // with_stepper(problem, options, tolerances, drive) makes the stepper for one
 // run and returns drive(stepper), so that a method may choose its stepper's
@@ -12,7 +13,7 @@
 #include <string>
 #include <utility>
 
-#include "integrators/driver.hpp"
+#include "integrators/adaptive_loops.hpp"
 
 namespace rb {
 
@@ -25,7 +26,8 @@ class AdaptiveMethod final : public Integrator {
     const Tolerances tol = tolerances_of(options);
     const std::string controller = controller_of(this->controller(), options);
     return with_stepper_(problem, options, tol, [&](auto& stepper) {
-      return drive_adaptive(problem, options, declared_order(), stepper, controller);
+      return drive_estimating(problem, options, declared_order(), stepper,
+                              FilterController(filter_controller(controller), stepper.error_order()));
     });
   }
 

@@ -16,7 +16,7 @@ namespace rb {
 
 namespace {
 
-// The pair's steps for drive_adaptive (integrators/driver.hpp), on the
+// The pair's steps for drive_estimating (integrators/adaptive_loops.hpp), on the
 // shared try/accept skeleton: an error norm for the controller, which
 // decides.
 class ExpPairStepper : public EmbeddedPair<ExpPairStepper> {

@@ -15,7 +15,7 @@ namespace rb {
 
 namespace {
 
-// The pair's steps for drive_adaptive (integrators/driver.hpp), on the
+// The pair's steps for drive_estimating (integrators/adaptive_loops.hpp), on the
 // shared try/accept skeleton: an error norm for the controller, which
 // decides.
 class FlatPairStepper : public EmbeddedPair<FlatPairStepper> {

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <utility>
 
+#include "integrators/adaptive_loops.hpp"
 #include "integrators/driver.hpp"
 #include "problems/input_error.hpp"
 #include "problems/jacobian.hpp"
@@ -248,7 +249,7 @@ GslIntegrator::GslIntegrator(int index, GslDrive drive)
 
 namespace {
 
-// GSL's evolve for drive_adaptive: each call is one accepted step towards
+// GSL's evolve for drive_lands_itself: each call is one accepted step towards
 // the bound (evolve clamps and lands itself); the attempts its control
 // rejects inside the call are added to cost.rejected.
 class GslEvolveStepper {
@@ -350,7 +351,7 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
       gsl_odeiv2_driver_alloc_standard_new(&sys, info.type(), h0, options.atol, options.rtol, 1.0, 0.0));
   if (!driver) return allocation_failure(problem, stepper);
   GslEvolveStepper evolve(driver.get(), &sys, &cb, stepper, problem.y0());
-  return drive_adaptive(problem, options, declared_order(), evolve);
+  return drive_lands_itself(problem, options, evolve);
 }
 
 }  // namespace rb

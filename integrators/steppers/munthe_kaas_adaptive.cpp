@@ -23,7 +23,7 @@ namespace {
 using LieVec = Eigen::Matrix<double, 3 + kZSize, 1>;
 constexpr int kLieSize = 3 + kZSize;
 
-// The pair's steps for drive_adaptive (integrators/driver.hpp), on the
+// The pair's steps for drive_estimating (integrators/adaptive_loops.hpp), on the
 // shared try/accept skeleton: an error estimate for the controller, which
 // decides. General: the ball has
 // inertia (RollingBall::has_inertia()), so that its evaluation is inlined.

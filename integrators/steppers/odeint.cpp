@@ -13,6 +13,7 @@
 #include <cmath>
 #include <type_traits>
 
+#include "integrators/adaptive_loops.hpp"
 #include "integrators/driver.hpp"
 #include "integrators/steppers/stepped_method.hpp"
 
@@ -122,7 +123,7 @@ Controlled make_controlled(const Tolerances& tol) {
 #pragma GCC diagnostic pop
 
 // A controlled stepper (controlled_runge_kutta or bulirsch_stoer) for
-// drive_adaptive: try_step from the current state; F at that state is
+// drive_own_controller: try_step from the current state; F at that state is
 // computed once and reused by the attempts after a rejection.
 template <class Controlled>
 class ControlledStepper {
@@ -221,7 +222,7 @@ class OdeintAdaptive final : public Integrator {
       : Integrator(odeint_facts(std::move(name), order, std::move(description), true, std::move(tableau))) {}
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
     Stepper stepper(problem, tolerances_of(options));
-    return drive_adaptive(problem, options, declared_order(), stepper);
+    return drive_own_controller(problem, options, declared_order(), stepper);
   }
 };
 

@@ -4,8 +4,8 @@
 // default range_algebra runs with no allocation; the system calls
 // Problem::flat_rhs and counts its evaluations in a counter owned by the run.
 //
-// Fixed-step ones run in drive_fixed_step, adaptive ones in drive_adaptive
-// (integrators/driver.hpp). Adding a stepper is one factory here and one
+// Fixed-step ones run in drive_fixed_step, adaptive ones in drive_own_controller
+// (integrators/driver.hpp, adaptive_loops.hpp). Adding a stepper is one factory here and one
 // registry line.
 #include <array>
 #include <memory>
