@@ -131,17 +131,11 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
 
 // ---- adaptive ----
 
-// Tolerances of an adaptive run, as the error norm of the controller uses
-// them: a component's error is measured against atol + rtol * |y_i|.
-struct Tolerances {
-  double rtol = 0.0;
-  double atol = 0.0;
-};
-
-// The tolerances of options, checked (the only check of them): finite,
-// >= 0, not both 0; also that the initial step options.h is finite and >= 0
-// (0 = automatic). Throws InputError naming the option.
-Tolerances tolerances_of(const RunOptions& options);
+// The tolerances of an adaptive run, options.tolerances (Tolerances,
+// integrators/tolerances.hpp: checked where they entered), which it needs
+// given (InputError "rtol" otherwise); also that the initial step options.h
+// is finite and >= 0 (0 = automatic; InputError "h").
+const Tolerances& tolerances_of(const RunOptions& options);
 
 // The smallest step time can resolve near t: a controller proposing less is
 // a step-size underflow (at 1e-14 relative, a step barely changes t).
@@ -191,10 +185,10 @@ PathCheck check_step_path(const Problem& problem, const FlatState& y0, const Fla
 // far.
 inline constexpr double kNearLimitTravel = 0.5;
 
-// The controller a run of an adaptive method uses: the method's own
-// (MethodInfo::controller) unless options.controller names a filter (i, pi,
-// pid) and the method's is one too; a library's controller stays. Throws
-// InputError (key "controller") for an unknown name.
+// The name of the controller a run of an adaptive method uses (the
+// report's): the method's own (MethodInfo::controller) unless
+// options.controller is a filter and the method's is one too; a library's
+// controller and the constant one stay.
 std::string controller_of(const std::string& method_default, const RunOptions& options);
 
 // What one attempt of an adaptive step did (a stepper with its own controller).
@@ -225,8 +219,9 @@ inline constexpr double kLimitShrink = 0.25;
 //         the state is unchanged;
 //     void accept(double t, double h, Cost& cost);
 //         makes the tried step the current state.
-//   The controller (controller_of) decides; the driver counts non-finite
-//   trials and ends the run diverged after kMaxNonFiniteTrials.
+//   The controller (filter: the run's or the method's) decides; the driver
+//   counts non-finite trials and ends the run diverged after
+//   kMaxNonFiniteTrials.
 // - its own controller (odeint):
 //     Attempt attempt(double t, double& h, Cost& cost);
 //         tries one step of h. accepted: its state is now the one at t + h;
@@ -263,7 +258,7 @@ inline constexpr double kLimitShrink = 0.25;
 // throws for a failing method; throws InputError for bad options.
 template <class Stepper>
 RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int order, Stepper& stepper,
-                         const std::string& controller_name = kLibraryController) {
+                         const ControllerKind* filter = nullptr) {
   constexpr bool estimates = requires(Stepper & s, Cost & c) { s.try_step(0.0, 0.0, c); };
   constexpr bool lands_itself = requires { requires Stepper::lands_itself; };
   const Tolerances tol = tolerances_of(options);
@@ -294,7 +289,7 @@ RunResult drive_adaptive(const Problem& problem, const RunOptions& options, int 
   else if constexpr (lands_itself) h = stepper.first_step(t_end);
   else h = initial_step(problem, y, tol, order, t_end, cost);
   auto make_controller = [&] {
-    if constexpr (estimates) return FilterController(filter_controller(controller_name), stepper.error_order());
+    if constexpr (estimates) return FilterController(*filter, stepper.error_order());
     else return FilterController(filter_controllers().front(), 1);  // unused
   };
   [[maybe_unused]] FilterController controller = make_controller();

@@ -50,8 +50,8 @@ class ExpPairStepper {
     const Mat3 D = R_new_ * R_low.transpose();
     const Vec3 e_rot(D(2, 1) - D(1, 2), D(0, 2) - D(2, 0), D(1, 0) - D(0, 1));
     const ZState z_new = z_ + dz_new_;
-    const ZState z_scale = (tol_.atol + tol_.rtol * z_.cwiseAbs().cwiseMax(z_new.cwiseAbs()).array()).matrix();
-    const double sum = (0.5 * e_rot / (tol_.atol + tol_.rtol)).squaredNorm() +
+    const ZState z_scale = (tol_.atol() + tol_.rtol() * z_.cwiseAbs().cwiseMax(z_new.cwiseAbs()).array()).matrix();
+    const double sum = (0.5 * e_rot / (tol_.atol() + tol_.rtol())).squaredNorm() +
                        ((dz_new_ - dz_low).array() / z_scale.array()).square().sum();
     return std::sqrt(sum / static_cast<double>(3 + kZSize));
   }

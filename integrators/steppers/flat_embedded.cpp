@@ -80,7 +80,7 @@ class FlatPairStepper {
   }
 
   double error_norm(double h) const {
-    const FlatState scale = (tol_.atol + tol_.rtol * y_.cwiseAbs().cwiseMax(y_new_.cwiseAbs()).array()).matrix();
+    const FlatState scale = (tol_.atol() + tol_.rtol() * y_.cwiseAbs().cwiseMax(y_new_.cwiseAbs()).array()).matrix();
     const FlatState e = h * combine(tableau_->e().data(), attempt_);
     return std::sqrt((e.array() / scale.array()).square().sum() / static_cast<double>(kFlatSize));
   }

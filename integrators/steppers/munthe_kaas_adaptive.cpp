@@ -177,9 +177,9 @@ class LieStepper {
   // (Hairer's stretched combination of two estimates for DP853).
   double error_norm(const LieVec& w_new, double h) const {
     LieVec scale;
-    scale.head<3>().setConstant(tol_.atol + tol_.rtol);
+    scale.head<3>().setConstant(tol_.atol() + tol_.rtol());
     scale.tail<kZSize>() =
-        (tol_.atol + tol_.rtol * z_.cwiseAbs().cwiseMax((z_ + w_new.tail<kZSize>()).cwiseAbs()).array()).matrix();
+        (tol_.atol() + tol_.rtol() * z_.cwiseAbs().cwiseMax((z_ + w_new.tail<kZSize>()).cwiseAbs()).array()).matrix();
     const double e2 = (combine(e_, h).array() / scale.array()).square().sum();
     if (e3_.n == 0) return std::sqrt(e2 / kLieSize);
     const double e3 = (combine(e3_, h).array() / scale.array()).square().sum();
