@@ -87,12 +87,14 @@ int run_trajectory(const TrajectoryArgs& a) {
   if (!integrator.adaptive() && !std::isfinite(a.h)) throw rb::InputError("the step must be a finite number > 0", "h");
   options.t_end = std::isnan(a.t_end) ? problem.t_end() : a.t_end;
   options.h = a.h;
-  options.rtol = a.rtol;
-  options.atol = a.atol;
-  if (!a.controller.empty()) options.controller = rb::filter_controller(a.controller).name;  // refuses unknown names
+  if (!a.controller.empty()) options.controller = &rb::filter_controller(a.controller);  // refuses unknown names
   if (!integrator.adaptive() && !(a.h > 0.0))
     throw rb::InputError("'" + integrator.name() + "' is a fixed-step method and needs --h > 0", "h");
-  // the integrators' own check of the tolerances, before a file is written
+  // the tolerances, checked before a file is written: an adaptive method
+  // needs them; a fixed-step one takes them when given (GSL's implicit
+  // steppers' Newton tolerance)
+  if (integrator.adaptive() || a.rtol != 0.0 || a.atol != 0.0) options.tolerances = rb::Tolerances(a.rtol, a.atol);
+  // and the initial step, as the run checks it
   if (integrator.adaptive()) (void)rb::tolerances_of(options);
   // a fixed-step method lands on every output, so outputs closer than h
   // would silently shorten its step: that is refused, not done
@@ -135,6 +137,7 @@ int run_reversibility(const ReversibilityArgs& a) {
     throw rb::InputError("the step must be a finite number > 0", "h");
   if (!std::isnan(a.tol) && !(a.tol > 0.0 && std::isfinite(a.tol)))
     throw rb::InputError("the tolerance must be a finite number > 0", "tol");
+  const rb::Tolerances tolerances = std::isnan(a.tol) ? rb::Tolerances() : rb::Tolerances(a.tol, a.tol);
   std::vector<const rb::Integrator*> methods;
   std::stringstream names(a.integrators);
   for (std::string name; std::getline(names, name, ',');) {
@@ -152,7 +155,7 @@ int run_reversibility(const ReversibilityArgs& a) {
   std::printf("  %-28s %10s %10s %10s %10s %10s\n", "integrator", "steps", "contact", "rotation", "momentum", "worst");
   for (const rb::Integrator* m : methods) {
     rb::RunOptions o = options;
-    if (m->adaptive()) o.rtol = o.atol = a.tol;
+    if (m->adaptive()) o.tolerances = tolerances;
     else o.h = a.h;
     const rb::ReversibilityDefect d = rb::reversibility_defect(*m, problem, o);
     if (d.status != rb::Status::ok) {
@@ -313,7 +316,7 @@ int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_
   for (const std::string& name : spec.integrators) (void)rb::find_integrator(name);
   if (!a.hs.empty()) spec.hs = rb::parse_number_list(a.hs, "h");
   if (!a.tols.empty()) spec.tols = rb::parse_number_list(a.tols, "tol");
-  if (!a.controller.empty()) spec.controller = rb::filter_controller(a.controller).name;  // refuses unknown names
+  if (!a.controller.empty()) spec.controller = &rb::filter_controller(a.controller);  // refuses unknown names
   if (a.repeats >= 0) spec.repeats = a.repeats;
   if (a.jobs > 0) spec.jobs = a.jobs;
   if (a.no_stability) spec.stability.enabled = false;

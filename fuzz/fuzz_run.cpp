@@ -95,7 +95,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!m) continue;
     rb::RunOptions mine = o;
     if (m->adaptive()) {
-      mine.rtol = mine.atol = tol;
+      mine.tolerances = rb::Tolerances(tol, tol);
       mine.h = (h >> 16) & 1 ? step : 0.0;  // a given first step, or the method's own
     } else {
       mine.h = step;

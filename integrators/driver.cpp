@@ -41,27 +41,21 @@ Validity model_limit(const Problem& problem, const ModelMargins& m, bool non_fin
   return {};
 }
 
-Tolerances tolerances_of(const RunOptions& options) {
-  auto check = [](double value, const char* key) {
-    if (!std::isfinite(value) || value < 0.0) throw InputError("an adaptive method needs a finite tolerance >= 0", key);
-  };
-  check(options.rtol, "rtol");
-  check(options.atol, "atol");
-  if (options.rtol == 0.0 && options.atol == 0.0)
-    throw InputError("an adaptive method needs rtol > 0 or atol > 0", "rtol");
+const Tolerances& tolerances_of(const RunOptions& options) {
+  if (!options.tolerances.given()) throw InputError("an adaptive method needs rtol > 0 or atol > 0", "rtol");
   if (!std::isfinite(options.h) || options.h < 0.0)
     throw InputError("the initial step h must be finite and >= 0 (0 chooses one)", "h");
-  return {options.rtol, options.atol};
+  return options.tolerances;
 }
 
 Validity attainable(const Tolerances& tol, const FlatState& y0) {
   const double floor = 4.0 * std::numeric_limits<double>::epsilon();
-  if (tol.rtol >= floor || tol.atol >= floor * y0.cwiseAbs().maxCoeff()) return {};
+  if (tol.rtol() >= floor || tol.atol() >= floor * y0.cwiseAbs().maxCoeff()) return {};
   char text[160];
   std::snprintf(text, sizeof text,
                 "the tolerances rtol = %.3g, atol = %.3g are below the rounding of the state (%.3g relative): "
                 "no step size can meet them",
-                tol.rtol, tol.atol, floor);
+                tol.rtol(), tol.atol(), floor);
   return {Status::step_underflow, text};
 }
 
@@ -82,7 +76,7 @@ double initial_step(const Problem& problem, const FlatState& y0, const Tolerance
                     Cost& cost) {
   // root-mean-square norm weighted by the tolerances
   // (kept above 0 so that atol = 0 with a zero component does not divide 0 by 0)
-  const FlatState scale = (tol.atol + tol.rtol * y0.array().abs()).max(std::numeric_limits<double>::min()).matrix();
+  const FlatState scale = (tol.atol() + tol.rtol() * y0.array().abs()).max(std::numeric_limits<double>::min()).matrix();
   auto norm = [&](const FlatState& v) { return std::sqrt((v.array() / scale.array()).square().mean()); };
   FlatState f0, f1;
   problem.flat_rhs(y0.data(), f0.data());
@@ -129,10 +123,9 @@ PathCheck check_step_path(const Problem& problem, const FlatState& y0, const Fla
 }
 
 std::string controller_of(const std::string& method_default, const RunOptions& options) {
-  if (options.controller.empty()) return method_default;
-  const ControllerKind& wanted = filter_controller(options.controller);  // throws for an unknown name
-  if (method_default == kConstantController || method_default == kLibraryController) return method_default;
-  return wanted.name;
+  if (!options.controller || method_default == kConstantController || method_default == kLibraryController)
+    return method_default;
+  return options.controller->name;
 }
 
 }  // namespace rb

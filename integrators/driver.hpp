@@ -118,17 +118,11 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
 
 // ---- adaptive ----
 
-// Tolerances of an adaptive run, as the error norm of the controller uses
-// them: a component's error is measured against atol + rtol * |y_i|.
-struct Tolerances {
-  double rtol = 0.0;
-  double atol = 0.0;
-};
-
-// The tolerances of options, checked (the only check of them): finite,
-// >= 0, not both 0; also that the initial step options.h is finite and >= 0
-// (0 = automatic). Throws InputError naming the option.
-Tolerances tolerances_of(const RunOptions& options);
+// The tolerances of an adaptive run, options.tolerances (Tolerances,
+// integrators/tolerances.hpp: checked where they entered), which it needs
+// given (InputError "rtol" otherwise); also that the initial step options.h
+// is finite and >= 0 (0 = automatic; InputError "h").
+const Tolerances& tolerances_of(const RunOptions& options);
 
 // The smallest step time can resolve near t: a controller proposing less is
 // a step-size underflow (at 1e-14 relative, a step barely changes t).
@@ -178,10 +172,10 @@ PathCheck check_step_path(const Problem& problem, const FlatState& y0, const Fla
 // far.
 inline constexpr double kNearLimitTravel = 0.5;
 
-// The controller a run of an adaptive method uses: the method's own
-// (MethodInfo::controller) unless options.controller names a filter (i, pi,
-// pid) and the method's is one too; a library's controller stays. Throws
-// InputError (key "controller") for an unknown name.
+// The name of the controller a run of an adaptive method uses (the
+// report's): the method's own (MethodInfo::controller) unless
+// options.controller is a filter and the method's is one too; a library's
+// controller and the constant one stay.
 std::string controller_of(const std::string& method_default, const RunOptions& options);
 
 // What one attempt of an adaptive step did (a stepper with its own controller).

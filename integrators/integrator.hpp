@@ -10,24 +10,30 @@
 #include <utility>
 #include <vector>
 
+#include "integrators/tolerances.hpp"
 #include "problems/problem.hpp"
 
 namespace rb {
 
+struct ControllerKind;  // integrators/controllers/controller.hpp
+
+// What a run is asked for, in typed values made once where the input enters
+// (the CLI, a sweep): nothing downstream parses or re-checks a string or a
+// tolerance (docs/design.md, "Options are typed where they enter").
 struct RunOptions {
-  double t_end = 0.0;  // 0 takes the problem's t_end
-  double h = 0.0;      // step of a fixed-step method; initial step (0 = automatic) of an adaptive one
-  double rtol = 0.0;   // tolerances of an adaptive method
-  double atol = 0.0;
+  double t_end = 0.0;     // 0 takes the problem's t_end
+  double h = 0.0;         // step of a fixed-step method; initial step (0 = automatic) of an adaptive one
+  Tolerances tolerances;  // of an adaptive method (checked on construction); none: a fixed-step run
   // Times at which the state is recorded, increasing, in (0, t_end]; t_end is
   // always recorded last. Empty: t_end only. Fixed-step methods land on them.
   std::vector<double> output_times;
   long max_steps = 100'000'000;  // accepted + rejected steps before "max-steps"
   // The step-size controller of an adaptive method whose stepper estimates
-  // its error ("i", "pi", "pid"; integrators/controllers/controller.hpp);
-  // empty: the method's own (MethodInfo::controller). Fixed-step methods
+  // its error (a filter: i, pi, pid; integrators/controllers/controller.hpp),
+  // looked up once by name where the name enters (filter_controller);
+  // nullptr: the method's own (MethodInfo::controller). Fixed-step methods
   // and libraries' steppers keep theirs.
-  std::string controller;
+  const ControllerKind* controller = nullptr;
   // The call is a timed repeat: a run made in a child process (a --stepper
   // plug-in, integrators/steppers/isolated_run.hpp) integrates once untimed
   // in the child before the run it times and returns, so that its time is

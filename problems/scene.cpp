@@ -190,9 +190,8 @@ void check_param_name(const std::string& name) {
 // Principal moments a rigid ball can have: positive, the triangle
 // inequality, and I1 + I2 + I3 <= 2 m r^2 (the trace of the inertia is
 // 2 sum m_i |x_i|^2, and |x_i| <= r); equality up to rounding is allowed.
-Vec3 read_inertia(const json& v, const SceneBall& ball) {
+void check_inertia(const Vec3& I, const SceneBall& ball) {
   const char* key = "ball.inertia";
-  const Vec3 I = vector_at<3>(v, key);
   const double slack = 1e-12 * I.cwiseAbs().sum();
   for (int k = 0; k < 3; ++k)
     if (!(I[k] > 0.0))
@@ -210,7 +209,6 @@ Vec3 read_inertia(const json& v, const SceneBall& ball) {
     throw InputError("the moments do not fit a ball of this mass and radius: I1 + I2 + I3 = " + num(I.sum()) +
                          " > 2 m r^2 = " + num(bound),
                      key);
-  return I;
 }
 
 SceneStart read_start(const json& v) {
@@ -233,35 +231,20 @@ SceneStart read_start(const json& v) {
     s.horizontal_velocity = vector_at<2>(*velocity, "start.velocity");
   else if (velocity) s.velocity = vector_at<3>(*velocity, "start.velocity");
   if (spin) s.spin = number_at(*spin, "start.spin");
-  if (const json* q = optional_key(v, "orientation")) {
-    s.orientation = vector_at<4>(*q, "start.orientation");
-    const double norm = s.orientation.norm();
-    if (std::abs(norm - 1.0) > 1e-6)
-      throw InputError("the quaternion [w, x, y, z] must have unit norm, not " + num(norm), "start.orientation");
-    s.orientation /= norm;
-  }
+  if (const json* q = optional_key(v, "orientation")) s.orientation = vector_at<4>(*q, "start.orientation");
   return s;
 }
 
-// "invariants": an array of known names, each once; whether the landscape
-// has them is checked with the model (make_invariants).
+// "invariants": an array of names (checked by check_values)
 std::vector<std::string> read_invariant_names(const json& v) {
   const char* key = "invariants";
-  const std::vector<std::string> known = invariant_names();
   if (!v.is_array()) throw InputError(std::string("must be an array of names, not ") + v.type_name(), key);
   std::vector<std::string> names;
-  for (const json& item : v) {
-    const std::string name = string_at(item, key);
-    if (std::find(known.begin(), known.end(), name) == known.end())
-      throw InputError("unknown invariant '" + valid_utf8(name) + "' (known: " + list_of(known) + ")", key);
-    if (std::find(names.begin(), names.end(), name) != names.end())
-      throw InputError("the invariant '" + name + "' is named more than once", key);
-    names.push_back(name);
-  }
+  for (const json& item : v) names.push_back(string_at(item, key));
   return names;
 }
 
-// The scene's keys and their own ranges; no landscape yet.
+// The scene's keys, their types and shapes; their ranges are check_values'.
 Scene read_scene(const json& root, const std::string& source) {
   if (!root.is_object()) throw InputError(std::string("a scene must be a JSON object, not ") + root.type_name());
   reject_unknown_keys(root, "",
@@ -270,20 +253,15 @@ Scene read_scene(const json& root, const std::string& source) {
   Scene s;
   s.source = source;
   // a name, never a path: it is shown, and a file name may be made of it
-  s.name = check_safe_name(string_at(required_key(root, "", "name"), "name"), "name");
+  s.name = string_at(required_key(root, "", "name"), "name");
   if (const json* d = optional_key(root, "description")) s.description = string_at(*d, "description");
   s.landscape = string_at(required_key(root, "", "landscape"), "landscape");
   if (const json* p = optional_key(root, "params")) {
     object_at(*p, "params");
-    for (const auto& item : p->items()) {
-      check_param_name(item.key());
-      s.params[item.key()] = number_at(item.value(), join_key("params", item.key()));
-    }
+    for (const auto& item : p->items()) s.params[item.key()] = number_at(item.value(), join_key("params", item.key()));
   }
   if (const json* d = optional_key(root, "domain")) {
     const Eigen::Vector4d b = vector_at<4>(*d, "domain");
-    if (!(b[0] < b[1]) || !(b[2] < b[3]))
-      throw InputError("[xmin, xmax, ymin, ymax] needs xmin < xmax and ymin < ymax", "domain");
     s.domain = Domain{b[0], b[1], b[2], b[3]};
     s.has_domain = true;
   }
@@ -291,20 +269,83 @@ Scene read_scene(const json& root, const std::string& source) {
   reject_unknown_keys(ball, "ball", {"radius", "mass", "inertia"});
   s.ball.radius = number_at(required_key(ball, "ball", "radius"), "ball.radius");
   s.ball.mass = number_at(required_key(ball, "ball", "mass"), "ball.mass");
-  if (!(s.ball.radius > 0.0)) throw InputError("the radius must be > 0", "ball.radius");
-  if (!(s.ball.mass > 0.0)) throw InputError("the mass must be > 0", "ball.mass");
-  if (const json* inertia = optional_key(ball, "inertia")) s.ball.inertia = read_inertia(*inertia, s.ball);
+  if (const json* inertia = optional_key(ball, "inertia")) s.ball.inertia = vector_at<3>(*inertia, "ball.inertia");
   if (const json* g = optional_key(root, "gravity")) s.gravity = number_at(*g, "gravity");
-  if (!(s.gravity >= 0.0)) throw InputError("gravity g0 must be >= 0 (it points down, (0, 0, -g0))", "gravity");
   s.start = read_start(required_key(root, "", "start"));
   s.t_end = number_at(required_key(root, "", "t_end"), "t_end");
-  if (!(s.t_end > 0.0)) throw InputError("t_end must be > 0", "t_end");
   if (const json* e = optional_key(root, "exact")) s.exact = string_at(*e, "exact");
+  if (const json* inv = optional_key(root, "invariants")) s.invariants = read_invariant_names(*inv);
+  return s;
+}
+
+void check_finite(double x, const std::string& key) {
+  if (!std::isfinite(x)) throw InputError("must be a finite number", key);
+}
+
+// The ranges of a scene's values, whether read from a file or built (a
+// file's numbers are finite already); normalises the orientation. No
+// landscape yet.
+void check_values(Scene& s) {
+  // a name, never a path: it is shown, and a file name may be made of it
+  (void)check_safe_name(s.name, "name");
+  for (const auto& [name, value] : s.params) {
+    check_param_name(name);
+    check_finite(value, join_key("params", name));
+  }
+  const Domain& d = s.domain;
+  if (s.has_domain && (!(d.xmin < d.xmax) || !(d.ymin < d.ymax)))
+    throw InputError("[xmin, xmax, ymin, ymax] needs xmin < xmax and ymin < ymax", "domain");
+  check_finite(s.ball.radius, "ball.radius");
+  check_finite(s.ball.mass, "ball.mass");
+  if (!(s.ball.radius > 0.0)) throw InputError("the radius must be > 0", "ball.radius");
+  if (!(s.ball.mass > 0.0)) throw InputError("the mass must be > 0", "ball.mass");
+  if (s.ball.inertia) check_inertia(*s.ball.inertia, s.ball);
+  check_finite(s.gravity, "gravity");
+  if (!(s.gravity >= 0.0)) throw InputError("gravity g0 must be >= 0 (it points down, (0, 0, -g0))", "gravity");
+  SceneStart& start = s.start;
+  const int motions =
+      int{start.omega.has_value()} + int{start.velocity.has_value()} + int{start.horizontal_velocity.has_value()};
+  if (motions > 1) throw InputError("give either omega or velocity (with spin), not both", "start");
+  if (motions == 0) throw InputError("missing omega or velocity (with spin): give one of them", "start");
+  check_finite(start.spin, "start.spin");
+  const double norm = start.orientation.norm();
+  if (!(std::abs(norm - 1.0) <= 1e-6))
+    throw InputError("the quaternion [w, x, y, z] must have unit norm, not " + num(norm), "start.orientation");
+  start.orientation /= norm;
+  check_finite(s.t_end, "t_end");
+  if (!(s.t_end > 0.0)) throw InputError("t_end must be > 0", "t_end");
   const std::vector<std::string> known = exact_names();
   if (s.exact != "none" && std::find(known.begin(), known.end(), s.exact) == known.end())
     throw InputError("unknown exact solution '" + s.exact + "' (known: none, " + list_of(known) + ")", "exact");
-  if (const json* inv = optional_key(root, "invariants")) s.invariants = read_invariant_names(*inv);
-  return s;
+  // invariants: known names, each once; whether the landscape has them is
+  // checked with the model (make_invariants)
+  const std::vector<std::string> invariants = invariant_names();
+  for (auto name = s.invariants.begin(); name != s.invariants.end(); ++name) {
+    if (std::find(invariants.begin(), invariants.end(), *name) == invariants.end())
+      throw InputError("unknown invariant '" + valid_utf8(*name) + "' (known: " + list_of(invariants) + ")",
+                       "invariants");
+    if (std::find(s.invariants.begin(), name, *name) != name)
+      throw InputError("the invariant '" + *name + "' is named more than once", "invariants");
+  }
+}
+
+// A built scene's values as a scene file would give them: its text, the
+// sweep's cache key (a file's is the file's own text).
+std::string values_text(const Scene& s) {
+  json ball = {{"radius", s.ball.radius}, {"mass", s.ball.mass}};
+  if (s.ball.inertia) ball["inertia"] = std::vector<double>(s.ball.inertia->begin(), s.ball.inertia->end());
+  const SceneStart& a = s.start;
+  json start = {{"contact", {a.contact.x(), a.contact.y()}},
+                {"orientation", {a.orientation[0], a.orientation[1], a.orientation[2], a.orientation[3]}}};
+  if (a.omega) start["omega"] = std::vector<double>(a.omega->begin(), a.omega->end());
+  if (a.velocity) start["velocity"] = std::vector<double>(a.velocity->begin(), a.velocity->end());
+  if (a.horizontal_velocity) start["velocity"] = {a.horizontal_velocity->x(), a.horizontal_velocity->y()};
+  if (!a.omega) start["spin"] = a.spin;
+  json scene = {{"name", s.name},   {"description", s.description}, {"landscape", s.landscape}, {"params", s.params},
+                {"ball", ball},     {"gravity", s.gravity},         {"start", start},           {"t_end", s.t_end},
+                {"exact", s.exact}, {"invariants", s.invariants}};
+  if (s.has_domain) scene["domain"] = {s.domain.xmin, s.domain.xmax, s.domain.ymin, s.domain.ymax};
+  return scene.dump(2) + "\n";
 }
 
 // What needs the landscape: a regular, finite, tangential start.
@@ -424,11 +465,17 @@ FlatState start_state(const Scene& scene, const RollingBall& model) {
 
 Scene parse_scene(std::string_view json_text, const std::string& source) {
   Scene scene = read_scene(parse_json(json_text), source);
+  scene.text = std::string(json_text);
+  return checked_scene(std::move(scene));
+}
+
+Scene checked_scene(Scene scene) {
+  check_values(scene);
   RollingBall model = make_model(scene);
   check_start(scene, model);
   auto exact = build_exact(scene, model);  // throws (key "exact") when it does not fit the scene
   (void)make_invariants(scene, model);     // throws (key "invariants") when the landscape lacks one
-  scene.text = std::string(json_text);
+  if (scene.text.empty()) scene.text = values_text(scene);
   scene.checked_model = std::make_shared<const SceneModel>(SceneModel{
       scene.landscape, scene.params, scene.ball, scene.gravity, std::move(model), scene.exact, scene.start, exact});
   return scene;

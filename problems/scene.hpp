@@ -54,7 +54,9 @@ struct Scene {
   // checked against the landscape and the ball on load
   std::vector<std::string> invariants;
   std::string source = "<text>";  // the file it came from, or "<text>"
-  std::string text;               // the JSON text it was parsed from (the sweep's cache key)
+  // the JSON text it was parsed from, or a built scene's values as a file
+  // would give them (checked_scene): the sweep's cache key
+  std::string text;
   // The model parse_scene compiled to check the start: make_problem reuses
   // it while the landscape, params, ball and gravity are those it was made
   // of, so that a load compiles the formula once.
@@ -64,6 +66,12 @@ struct Scene {
 // Parses and checks a scene. source names where the text came from (kept in
 // Scene::source). Throws InputError on any problem, naming the key.
 Scene parse_scene(std::string_view json_text, const std::string& source = "<text>");
+
+// Checks a scene built as a value (the regime study's) as parse_scene checks
+// a file's (every range, the landscape, the start, the exact solution and
+// the invariants; the same InputErrors) and returns it ready for
+// make_problem, its orientation normalised.
+Scene checked_scene(Scene scene);
 
 // Reads and parses a scene file; an unreadable file throws InputError (key "scene").
 Scene load_scene_file(const std::string& path);

@@ -60,7 +60,7 @@ std::vector<SweepTask> finer_step_tasks(const SweepSpec& spec, const std::vector
     const double t_end = s.problem.t_end();
     const double h = step_taken(smallest / 2.0, t_end);
     if (!(h > 0.0) || std::ceil(t_end / h - 1e-9) > static_cast<double>(most)) continue;
-    out.push_back({next_index + out.size(), key.first, key.second, h, kNaN, spec.controller});
+    out.push_back({next_index + out.size(), key.first, key.second, h, {}, spec.controller});
   }
   return out;
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bench/lib/regime_grid.hpp"
+#include "integrators/controllers/controller.hpp"
 
 namespace rb {
 
@@ -97,9 +98,9 @@ struct SweepSpec {
   // pre-asymptotic, round after round (bench/lib/finer_steps.hpp); an
   // unsharded sweep only: a shard does not see its method's other runs
   bool extend_ladders = true;
-  // the step-size controller of the adaptive methods that take one (i, pi,
-  // pid; RunOptions::controller); empty: each method's own
-  std::string controller;
+  // the step-size controller of the adaptive methods that take one (a
+  // filter: i, pi, pid; RunOptions::controller); nullptr: each method's own
+  const ControllerKind* controller = nullptr;
   StabilitySpec stability;
   HorizonSpec horizon;
   std::string cache_dir;  // reference cache; empty: none

@@ -2,8 +2,8 @@
 // The regime study's scenes, generated from its grid (docs/usage.md, "The
 // regime study"), and the report's "regime" section (docs/formats.md,
 // "Regime"): one bumpy bowl, one ball, one start, with the cell's inertia
-// ratio, spin, roughness and t_end. Each scene is JSON text read by the
-// scene parser, so it passes the checks a scene file does.
+// ratio, spin, roughness and t_end. Each scene is built as a value and
+// checked by checked_scene, the checks a scene file passes.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -13,8 +13,8 @@
 
 namespace rb {
 
-// The scene file of one cell.
-std::string regime_scene_json(const RegimeCell& cell);
+// The scene of one cell, as built (not yet checked: checked_scene).
+Scene regime_scene(const RegimeCell& cell);
 
 // The principal moments of a cell's ball, empty for ratio 1 (the
 // homogeneous ball, given without "inertia").
@@ -35,7 +35,7 @@ struct RegimeRates {
 };
 RegimeRates regime_rates(const Scene& scene);
 
-// Every cell's scene, parsed and checked, then (when grid.held_out) the
+// Every cell's scene, checked, then (when grid.held_out) the
 // held-out scenes: regime_held_out_cells() and the shipped chaplygin-*
 // scenes; a cell the scene check refuses throws InputError (key "regime")
 // naming the cell and the reason.

@@ -93,7 +93,7 @@ json options_json(const SweepSpec& s) {
           {"repeat_budget_s", s.repeat_budget_s},
           {"jobs", s.jobs},
           {"max_steps", s.max_steps},
-          {"controller", s.controller.empty() ? json(nullptr) : json(s.controller)},
+          {"controller", s.controller ? json(s.controller->name) : json(nullptr)},
           {"stability",
            {{"enabled", st.enabled},
             {"scenes", st.scenes},

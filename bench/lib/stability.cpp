@@ -35,7 +35,7 @@ DriftRecord drift_run(const Problem& problem, const Integrator& m, const Stabili
   RunOptions o;
   o.t_end = st.drift_t_end;
   o.h = st.drift_h;
-  o.rtol = o.atol = 1e-8;  // used by adaptive methods only
+  o.tolerances = Tolerances(1e-8, 1e-8);  // used by adaptive methods (and GSL's implicit fixed-step Newton) only
   o.output_times = log_spaced(10.0 * st.drift_h, st.drift_t_end, st.drift_samples);
   const auto t0 = std::chrono::steady_clock::now();
   const RunResult run = integrate_safely(m, problem, o);

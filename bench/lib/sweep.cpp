@@ -30,7 +30,7 @@ RunOptions options_of(const SweepScene& s, const SweepTask& task, long max_steps
   o.t_end = s.problem.t_end();
   o.max_steps = max_steps;
   o.controller = task.controller;
-  if (std::isnan(task.tol)) {
+  if (!task.tolerances.given()) {
     o.h = task.h;
     for (const double t : outputs) {
       const double k = std::round(t / task.h);
@@ -38,8 +38,7 @@ RunOptions options_of(const SweepScene& s, const SweepTask& task, long max_steps
     }
   } else {
     o.output_times = outputs;
-    o.rtol = task.tol;
-    o.atol = task.tol;
+    o.tolerances = task.tolerances;
   }
   return o;
 }
@@ -234,11 +233,14 @@ std::vector<SweepTask> sweep_tasks(const SweepSpec& spec, const std::vector<Swee
   if (methods.empty())
     for (const auto& m : registry()) methods.push_back(m->name());
   for (const std::string& m : methods) find_integrator(m);  // unknown names fail before any run
+  // each tolerance of the list checked once, as a run takes it
+  std::vector<Tolerances> tolerances;
+  for (const double tol : spec.tols) tolerances.emplace_back(tol, tol);
   std::vector<SweepTask> all;
   for (std::size_t s = 0; s < scenes.size(); ++s)
     for (const std::string& m : methods) {
       if (find_integrator(m).adaptive()) {
-        for (double tol : spec.tols) all.push_back({all.size(), s, m, kNaN, tol, spec.controller});
+        for (const Tolerances& tol : tolerances) all.push_back({all.size(), s, m, kNaN, tol, spec.controller});
       } else {
         // ladder values that give the same step on a short run are one run
         std::vector<double> taken;
@@ -246,7 +248,7 @@ std::vector<SweepTask> sweep_tasks(const SweepSpec& spec, const std::vector<Swee
           const double step = step_taken(h, scenes[s].problem.t_end());
           if (std::find(taken.begin(), taken.end(), step) != taken.end()) continue;
           taken.push_back(step);
-          all.push_back({all.size(), s, m, step, kNaN, spec.controller});
+          all.push_back({all.size(), s, m, step, {}, spec.controller});
         }
       }
     }
@@ -263,7 +265,10 @@ RunRecord run_task(const SweepScene& s, const SweepTask& task, long max_steps) {
   r.scene = s.scene.name;
   r.method = m.info();
   r.h = task.h;
-  r.rtol = r.atol = task.tol;
+  if (task.tolerances.given()) {
+    r.rtol = task.tolerances.rtol();
+    r.atol = task.tolerances.atol();
+  }
   const RunOptions timed = timed_options(s, task, max_steps);
   r.controller = controller_of(m.controller(), timed);
   const RunResult run = integrate_safely(m, s.problem, timed);

@@ -109,9 +109,9 @@ struct SweepTask {
   std::size_t index = 0;  // position in the full (unsharded) sweep
   std::size_t scene = 0;
   std::string integrator;
-  double h = kNaN;         // fixed-step
-  double tol = kNaN;       // adaptive: rtol = atol = tol
-  std::string controller;  // RunOptions::controller (empty: the method's own)
+  double h = kNaN;                             // fixed-step
+  Tolerances tolerances;                       // adaptive: rtol = atol = a tolerance of the spec; none: fixed-step
+  const ControllerKind* controller = nullptr;  // RunOptions::controller (nullptr: the method's own)
 };
 
 // The step a fixed-step method takes for a ladder value h from 0 to t_end:

@@ -20,14 +20,16 @@ namespace rb {
 template <class WithStepper>
 class AdaptiveMethod final : public Integrator {
  public:
+  // Throws InputError (key "controller") when the method's controller is no filter.
   AdaptiveMethod(MethodInfo info, WithStepper with_stepper)
-      : Integrator(adaptive_facts(std::move(info))), with_stepper_(std::move(with_stepper)) {}
+      : Integrator(adaptive_facts(std::move(info))),
+        own_controller_(&filter_controller(this->controller())),
+        with_stepper_(std::move(with_stepper)) {}
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
-    const Tolerances tol = tolerances_of(options);
-    const std::string controller = controller_of(this->controller(), options);
-    return with_stepper_(problem, options, tol, [&](auto& stepper) {
+    const ControllerKind* filter = options.controller ? options.controller : own_controller_;
+    return with_stepper_(problem, options, options.tolerances, [&](auto& stepper) {
       return drive_estimating(problem, options, declared_order(), stepper,
-                              FilterController(filter_controller(controller), stepper.error_order()));
+                              FilterController(*filter, stepper.error_order()));
     });
   }
 
@@ -37,6 +39,7 @@ class AdaptiveMethod final : public Integrator {
     if (info.controller.empty()) info.controller = "pi";
     return info;
   }
+  const ControllerKind* own_controller_;  // the method's filter, looked up once
   WithStepper with_stepper_;
 };
 

@@ -1,7 +1,7 @@
 #pragma once
 // The try/accept skeleton every embedded pair the suite's controllers drive
 // shares (the flat, Lie and exponential-product pairs): the error-estimating
-// stepper protocol of integrators/driver.hpp written once, the pair itself
+// stepper protocol of integrators/adaptive_loops.hpp written once, the pair itself
 // (CRTP) saying only how its stages and its state work:
 //
 //   void first_stage(Cost&);           the stage at the current state

@@ -15,11 +15,11 @@ namespace rb {
 // atol + rtol max(|y_i|, |y_new_i|), per component
 template <class V>
 V value_scale(const Tolerances& tol, const V& y, const V& y_new) {
-  return (tol.atol + tol.rtol * y.cwiseAbs().cwiseMax(y_new.cwiseAbs()).array()).matrix();
+  return (tol.atol() + tol.rtol() * y.cwiseAbs().cwiseMax(y_new.cwiseAbs()).array()).matrix();
 }
 
 // the scale of a rotation error (rad): the size of a rotation is about 1
-inline double rotation_scale(const Tolerances& tol) { return tol.atol + tol.rtol; }
+inline double rotation_scale(const Tolerances& tol) { return tol.atol() + tol.rtol(); }
 
 // sum_i (e_i / scale_i)^2
 template <class V>

@@ -320,10 +320,10 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
     if (!(options.h > 0.0) || !std::isfinite(options.h))
       throw InputError("a fixed-step method needs a step h > 0", "h");
     // the implicit steppers read their Newton tolerance from the driver's
-    // control (checked as any tolerance when given); explicit ones ignore it
-    if (options.rtol != 0.0 || options.atol != 0.0) (void)tolerances_of(options);
-    const double rtol = options.rtol > 0.0 ? options.rtol : kFixedStepNewtonTol;
-    const double atol = options.atol > 0.0 ? options.atol : kFixedStepNewtonTol;
+    // control (options.tolerances when given); explicit ones ignore it
+    const Tolerances& given = options.tolerances;
+    const double rtol = given.rtol() > 0.0 ? given.rtol() : kFixedStepNewtonTol;
+    const double atol = given.atol() > 0.0 ? given.atol() : kFixedStepNewtonTol;
     const DriverPtr driver(gsl_odeiv2_driver_alloc_standard_new(&sys, info.type(), options.h, atol, rtol, 1.0, 0.0));
     if (!driver) return allocation_failure(problem, stepper);
     gsl_odeiv2_step* step = driver->s;
@@ -343,12 +343,12 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
     return drive_fixed_step(problem, options, advance);
   }
 
-  // adaptive: validate everything before allocating
-  (void)tolerances_of(options);
+  // adaptive: validate everything before allocating (drive_lands_itself's
+  // check of its options, once more: GSL allocates with them)
+  const Tolerances& tol = tolerances_of(options);
   (void)output_times_of(problem, options);
   const double h0 = options.h > 0.0 ? options.h : 1e-3 * t_end_of(problem, options);
-  const DriverPtr driver(
-      gsl_odeiv2_driver_alloc_standard_new(&sys, info.type(), h0, options.atol, options.rtol, 1.0, 0.0));
+  const DriverPtr driver(gsl_odeiv2_driver_alloc_standard_new(&sys, info.type(), h0, tol.atol(), tol.rtol(), 1.0, 0.0));
   if (!driver) return allocation_failure(problem, stepper);
   GslEvolveStepper evolve(driver.get(), &sys, &cb, stepper, problem.y0());
   return drive_lands_itself(problem, options, evolve);

@@ -117,8 +117,8 @@ using BulirschStoer = ode::bulirsch_stoer<OdeintState>;
 #pragma GCC diagnostic ignored "-Wuninitialized"
 template <class Controlled>
 Controlled make_controlled(const Tolerances& tol) {
-  if constexpr (std::is_same_v<Controlled, BulirschStoer>) return BulirschStoer(tol.atol, tol.rtol);
-  else return Controlled(typename Controlled::error_checker_type(tol.atol, tol.rtol));
+  if constexpr (std::is_same_v<Controlled, BulirschStoer>) return BulirschStoer(tol.atol(), tol.rtol());
+  else return Controlled(typename Controlled::error_checker_type(tol.atol(), tol.rtol()));
 }
 #pragma GCC diagnostic pop
 
@@ -221,7 +221,7 @@ class OdeintAdaptive final : public Integrator {
   OdeintAdaptive(std::string name, int order, std::string description, std::string tableau = {})
       : Integrator(odeint_facts(std::move(name), order, std::move(description), true, std::move(tableau))) {}
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
-    Stepper stepper(problem, tolerances_of(options));
+    Stepper stepper(problem, options.tolerances);
     return drive_own_controller(problem, options, declared_order(), stepper);
   }
 };

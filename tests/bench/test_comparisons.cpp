@@ -22,7 +22,8 @@ SweepSpec one_scene(const std::string& scene, double t_end) {
 }
 
 RunRecord run_one(const SweepScene& s, const std::string& method, double h, double tol = kNaN) {
-  return run_task(s, SweepTask{0, 0, method, h, tol, {}}, 5'000'000);
+  const Tolerances tolerances = std::isnan(tol) ? Tolerances() : Tolerances(tol, tol);
+  return run_task(s, SweepTask{0, 0, method, h, tolerances, nullptr}, 5'000'000);
 }
 
 // rkmk8 and odeint-fehlberg78 share a tableau and, for a homogeneous ball
@@ -103,7 +104,7 @@ TEST(Comparisons, AnAdaptiveMethodsStepsDoNotDependOnACoarserOutputGrid) {
   const std::vector<SweepScene> scenes = prepare_scenes(one_scene("bowl-3d", 5.0));
   const RunRecord x = run_one(scenes.front(), "odeint-fehlberg78-adaptive", kNaN, 1e-4);
   RunOptions end_only;
-  end_only.rtol = end_only.atol = 1e-4;
+  end_only.tolerances = Tolerances(1e-4, 1e-4);
   const RunResult alone = find_integrator("odeint-fehlberg78-adaptive").integrate(scenes.front().problem, end_only);
   EXPECT_EQ(x.cost.steps, alone.cost.steps);
   EXPECT_GT(x.error_max_source.steps, x.cost.steps);

@@ -116,7 +116,7 @@ TEST(RegimeScenes, EveryCellIsAValidSceneWithItsCoordinates) {
 
 TEST(RegimeScenes, TheStartRollsRoundTheBowlAtTheCellsSpeed) {
   for (const RegimeCell& c : regime_cells(default_regime_grid())) {
-    const Scene s = parse_scene(regime_scene_json(c));
+    const Scene s = checked_scene(regime_scene(c));
     EXPECT_EQ(s.params.at("a"), c.bowl);
     ASSERT_TRUE(s.start.horizontal_velocity.has_value()) << s.name;
     EXPECT_EQ(*s.start.horizontal_velocity, Vec2(0.0, c.speed));

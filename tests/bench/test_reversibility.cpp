@@ -26,7 +26,7 @@ RunOptions fixed(double h, double t_end) {
 
 RunOptions tolerance(double tol, double t_end) {
   RunOptions o;
-  o.rtol = o.atol = tol;
+  o.tolerances = Tolerances(tol, tol);
   o.t_end = t_end;
   return o;
 }

@@ -66,7 +66,7 @@ TEST(Score, ACsvOfARunReproducesTheReportsErrorAndDrift) {
     spec.scenes = {scene};
     spec.t_end = 2.0;
     const std::vector<SweepScene> scenes = prepare_scenes(spec);
-    const RunRecord record = run_task(scenes[0], {0, 0, method, h, kNaN, ""}, spec.max_steps);
+    const RunRecord record = run_task(scenes[0], {0, 0, method, h, {}, nullptr}, spec.max_steps);
     ASSERT_EQ(record.status, Status::ok);
     const std::string kind = scenes[0].reference.kind;
     const nlohmann::json expected = {{"error", errors_json(record.error, kind)},

@@ -88,7 +88,7 @@ TEST(Dexpinv, AStepAtThePoleIsAStatusNeverAValue) {
   EXPECT_EQ(fixed.final_state, problem.y0());
   RunOptions a;
   a.h = o.h;  // the first step tried
-  a.rtol = a.atol = 1e-6;
+  a.tolerances = Tolerances(1e-6, 1e-6);
   a.t_end = 2.0;
   const RunResult adaptive = find_integrator("rkmk-dp54-adaptive").integrate(problem, a);
   EXPECT_EQ(adaptive.status, Status::ok);

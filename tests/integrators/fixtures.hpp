@@ -45,7 +45,7 @@ inline const Problem& shipped_scene(const std::string& name) {
 inline RunOptions tolerance_every(double tol, double dt, double t_end) {
   RunOptions o;
   o.t_end = t_end;
-  o.rtol = o.atol = tol;
+  o.tolerances = Tolerances(tol, tol);
   for (int k = 1; k * dt < t_end - 1e-12; ++k) o.output_times.push_back(k * dt);
   return o;
 }

@@ -44,7 +44,7 @@ const FlatState& reference(const std::string& name) {
 RunOptions at_tolerance(double tol) {
   RunOptions o;
   o.t_end = kTEnd;
-  o.rtol = o.atol = tol;
+  o.tolerances = Tolerances(tol, tol);
   return o;
 }
 

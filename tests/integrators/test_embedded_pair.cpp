@@ -75,7 +75,7 @@ TEST(EmbeddedPair, AStepThatIsNotFiniteHasNoErrorNorm) {
 }
 
 TEST(ErrorNorm, IsTheRootMeanSquareOfEachComponentAgainstItsOwnScale) {
-  const Tolerances tol{.rtol = 0.5, .atol = 0.25};
+  const Tolerances tol(0.5, 0.25);
   using V = Eigen::Vector3d;
   const V y(1.0, -2.0, 0.0), y_new(-3.0, 1.0, 0.0);
   const V scale = value_scale(tol, y, y_new);

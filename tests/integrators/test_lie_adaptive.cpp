@@ -159,7 +159,7 @@ TEST(LieAdaptive, RotationStaysOnSO3OnEveryShippedScene) {
       const Integrator& m = find_integrator(method);
       RunOptions o = tolerance_every(1e-8, 0.1, p.t_end());
       o.h = m.adaptive() ? 0.0 : 0.01;
-      if (!m.adaptive()) o.rtol = o.atol = 0.0;
+      if (!m.adaptive()) o.tolerances = {};
       const RunResult r = m.integrate(p, o);
       EXPECT_EQ(r.status, Status::ok) << name << " " << method << ": " << r.message;
       ASSERT_FALSE(r.output.y.empty());

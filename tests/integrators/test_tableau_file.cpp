@@ -111,7 +111,7 @@ TEST(TableauFile, TheFilesPairRunsAsTheBuiltInPairDoes) {
   const Problem problem = make_problem(load_scene("bowl-planar"));
   RunOptions options;
   options.t_end = 2.0;
-  options.rtol = options.atol = 1e-8;
+  options.tolerances = Tolerances(1e-8, 1e-8);
   const RunResult mine = integrators_of(parse_tableau_file(kBs32, "t.json"))[3]->integrate(problem, options);
   const RunResult built_in = find_integrator("rkmk-bs32-adaptive").integrate(problem, options);
   ASSERT_EQ(mine.status, Status::ok) << mine.message;

@@ -74,7 +74,7 @@ TEST(VernerPairs, TheAdaptiveMembersFollowTheirTolerance) {
     for (double tol : {1e-5, 1e-7, 1e-9}) {
       RunOptions o;
       o.t_end = 1.0;
-      o.rtol = o.atol = tol;
+      o.tolerances = Tolerances(tol, tol);
       const RunResult run = method.integrate(testing::valley(), o);
       ASSERT_EQ(run.status, Status::ok) << run.message;
       const double error = (run.final_state - reference()).cwiseAbs().maxCoeff();

@@ -64,7 +64,7 @@ TEST(Anisotropic, EqualMomentsAreTheHomogeneousBallForEveryIntegrator) {
   int checked = 0;
   for (const auto& integrator : registry()) {
     RunOptions o = every(0.25, 1.0, 0.01);
-    o.rtol = o.atol = 1e-8;
+    o.tolerances = Tolerances(1e-8, 1e-8);
     o.h = integrator->adaptive() ? 0.0 : 0.01;
     const RunResult a = integrator->integrate(homogeneous, o);
     const RunResult b = integrator->integrate(equal, o);

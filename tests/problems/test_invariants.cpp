@@ -23,7 +23,7 @@ namespace {
 // A 9th-order pair at 1e-13 stands for the exact flow, recorded every dt.
 RunResult accurate_run(const Problem& p, double dt = 0.05) {
   RunOptions o;
-  o.rtol = o.atol = 1e-13;
+  o.tolerances = Tolerances(1e-13, 1e-13);
   o.t_end = p.t_end();
   for (double t = dt; t < p.t_end() - 1e-9; t += dt) o.output_times.push_back(t);
   const RunResult r = find_integrator("rkmk-verner9-adaptive").integrate(p, o);

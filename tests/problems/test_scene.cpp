@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "problems/exact.hpp"
@@ -247,6 +248,79 @@ TEST(SceneErrors, OutOfRangeValues) {
   s = base_scene();
   s["gravity"] = 0.0;  // a weightless scene is allowed
   EXPECT_NO_THROW(parse_scene(s.dump()));
+}
+
+// A scene built as a value (the regime study's) passes the checks a file
+// does, with the same errors: each file case above, broken in the value
+// parsed from the valid scene, is refused by checked_scene naming its key.
+TEST(SceneErrors, BuiltScenesGetTheFileChecks) {
+  const Scene valid = parse_scene(base_scene().dump());
+  auto message_of = [](Scene s) {
+    s.text.clear();
+    try {
+      (void)checked_scene(std::move(s));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  auto file_message_of = [](const json& broken) { return std::string(error_of(broken.dump()).what()); };
+  Scene s = valid;
+  s.ball.radius = -0.1;
+  json f = base_scene();
+  f["ball"]["radius"] = -0.1;
+  EXPECT_EQ(message_of(s), file_message_of(f));
+  s = valid;
+  s.gravity = -9.81;
+  f = base_scene();
+  f["gravity"] = -9.81;
+  EXPECT_EQ(message_of(s), file_message_of(f));
+  s = valid;
+  s.domain.xmax = -3.0;
+  f = base_scene();
+  f["domain"] = {-2, -3, -2, 2};
+  EXPECT_EQ(message_of(s), file_message_of(f));
+  s = valid;
+  s.name = "../up";
+  f = base_scene();
+  f["name"] = "../up";
+  EXPECT_EQ(message_of(s), file_message_of(f));
+  s = valid;
+  s.start.orientation = Eigen::Vector4d(2.0, 0.0, 0.0, 0.0);
+  f = base_scene();
+  f["start"]["orientation"] = {2, 0, 0, 0};
+  EXPECT_EQ(message_of(s), file_message_of(f));
+  s = valid;
+  s.start.contact = Vec2(5.0, 0.0);
+  f = base_scene();
+  f["start"]["contact"] = {5.0, 0.0};
+  EXPECT_EQ(message_of(s), file_message_of(f));
+  s = valid;
+  s.invariants = {"nope"};
+  f = base_scene();
+  f["invariants"] = json::array({"nope"});
+  EXPECT_EQ(message_of(s), file_message_of(f));
+  // only value checks a file's reader makes impossible: a built scene's own
+  s = valid;
+  s.start.omega = Vec3(0.0, 0.0, 1.0);
+  EXPECT_EQ(message_of(s), "'start': give either omega or velocity (with spin), not both");
+  s = valid;
+  s.t_end = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(message_of(s), "'t_end': must be a finite number");
+  // a valid one is checked as the file was, and its text (the sweep's
+  // cache key) lists its values: parsed, it is the same scene
+  const Scene built = checked_scene([&] {
+    Scene b = valid;
+    b.text.clear();
+    return b;
+  }());
+  const Scene again = parse_scene(built.text);
+  EXPECT_EQ(again.name, valid.name);
+  EXPECT_EQ(again.params, valid.params);
+  EXPECT_EQ(again.start.velocity, valid.start.velocity);
+  EXPECT_EQ(again.start.orientation, valid.start.orientation);
+  EXPECT_EQ(again.t_end, valid.t_end);
+  EXPECT_EQ(make_problem(again).y0(), make_problem(valid).y0());
 }
 
 TEST(SceneErrors, StartNeedsOmegaXorVelocity) {

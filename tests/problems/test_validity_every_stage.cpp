@@ -56,7 +56,7 @@ TEST(ValidityEveryStage, FixedStepMethodsStopAtTheCrossing) {
     for (const double h : {0.01, 0.02, 0.05}) {
       RunOptions o = outputs_every(std::max(0.01, h));
       o.h = h;
-      if (std::string(name).ends_with("imp")) o.rtol = o.atol = 1e-8;
+      if (std::string(name).ends_with("imp")) o.tolerances = Tolerances(1e-8, 1e-8);
       const RunResult r = find_integrator(name).integrate(p, o);
       expect_curvature_stop(p, o, r, std::string(name) + " h = " + std::to_string(h));
     }
@@ -68,7 +68,7 @@ TEST(ValidityEveryStage, FixedStepMethodsStopAtTheCrossing) {
 TEST(ValidityEveryStage, AdaptiveMethodsStopAtTheCrossing) {
   const Problem p = steep_bowl();
   RunOptions o = outputs_every(0.01);
-  o.rtol = o.atol = 1e-2;
+  o.tolerances = Tolerances(1e-2, 1e-2);
   const auto flat_pair = rk_method(methods::dormand_prince54(), "rk-dp54-adaptive", "pi");
   std::vector<const Integrator*> methods = {flat_pair.get()};
   for (const char* name : {"rkmk-dp54-adaptive", "rkmk-f78-adaptive", "cg3-adaptive", "odeint-dopri5-adaptive",
@@ -110,7 +110,7 @@ TEST(ValidityEveryStage, EvaluationsCountedPerStepAreTheMethodsOwn) {
   // step given, so that no starting guess evaluates)
   RunOptions a = outputs_every(0.1);
   a.h = 1e-3;
-  a.rtol = a.atol = 1e-8;
+  a.tolerances = Tolerances(1e-8, 1e-8);
   for (const char* name :
        {"odeint-cash-karp54-adaptive", "gsl-rkf45-adaptive", "gsl-rk4imp-adaptive", "cg3-adaptive"}) {
     const RunResult r = find_integrator(name).integrate(p, a);

@@ -27,7 +27,7 @@ RunOptions end_only(const Integrator& method, double t_end, double h) {
   RunOptions o;
   o.t_end = t_end;
   o.h = method.adaptive() ? 0.0 : h;
-  o.rtol = o.atol = 1e-9;
+  o.tolerances = Tolerances(1e-9, 1e-9);
   return o;
 }
 

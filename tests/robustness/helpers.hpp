@@ -77,7 +77,7 @@ inline RunOptions options_for(const Integrator& m, double t_end, double h, doubl
   RunOptions o;
   o.t_end = t_end;
   if (m.adaptive()) {
-    o.rtol = o.atol = tol;
+    o.tolerances = Tolerances(tol, tol);
   } else {
     o.h = h;
   }

@@ -209,20 +209,37 @@ TEST(Limits, StepCountsAboveTheBudgetRunToMaxSteps) {
 }
 
 TEST(Limits, AbsurdTolerancesAreErrorsOrStatuses) {
+  // negative, NaN, infinite, both zero: refused where they enter (the
+  // Tolerances every adaptive run takes), naming the option
+  struct Absurd {
+    double rtol, atol;
+    const char* key;
+    const char* message;
+  };
+  const char* finite = "an adaptive method needs a finite tolerance >= 0";
+  for (const Absurd& a : {Absurd{-1e-6, 1e-6, "rtol", finite}, Absurd{1e-6, -1e-6, "atol", finite},
+                          Absurd{kNaN, 1e-6, "rtol", finite}, Absurd{1e-6, kInf, "atol", finite},
+                          Absurd{0.0, 0.0, "rtol", "an adaptive method needs rtol > 0 or atol > 0"}}) {
+    try {
+      (void)Tolerances(a.rtol, a.atol);
+      ADD_FAILURE() << "took rtol " << a.rtol << ", atol " << a.atol;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), a.key) << a.rtol << ", " << a.atol;
+      EXPECT_EQ(e.message(), a.message) << a.rtol << ", " << a.atol;
+    }
+  }
   const Problem p = make_problem(load_scene("valley-sideways"));
   for (const auto& m : registry()) {
     if (!m->adaptive()) continue;
-    // negative, NaN, infinite, both zero: refused, naming the option
-    for (const auto& [rtol, atol] : {std::pair{-1e-6, 1e-6}, {1e-6, -1e-6}, {kNaN, 1e-6}, {1e-6, kInf}, {0.0, 0.0}}) {
-      RunOptions o = options_for(*m, 1.0, 0.0, 0.0, 0.5);
-      o.rtol = rtol;
-      o.atol = atol;
-      try {
-        m->integrate(p, o);
-        ADD_FAILURE() << m->name() << " took rtol " << rtol << ", atol " << atol;
-      } catch (const InputError& e) {
-        EXPECT_TRUE(e.key() == "rtol" || e.key() == "atol") << m->name() << ": " << e.what();
-      }
+    // none given: refused by every adaptive method, naming rtol
+    RunOptions none = options_for(*m, 1.0, 0.0, 1e-6, 0.5);
+    none.tolerances = {};
+    try {
+      m->integrate(p, none);
+      ADD_FAILURE() << m->name() << " ran without tolerances";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), "rtol") << m->name() << ": " << e.what();
+      EXPECT_EQ(e.message(), "an adaptive method needs rtol > 0 or atol > 0") << m->name();
     }
     // below rounding: step-underflow at t = 0, before any evaluation
     RunResult r = m->integrate(p, options_for(*m, 1.0, 0.0, 1e-300, 0.5));
