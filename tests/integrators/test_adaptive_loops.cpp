@@ -77,8 +77,7 @@ TEST(AdaptiveLoops, EstimatingLoopTakesTheStepsItsControllerDecides) {
   RunOptions o;
   o.h = 0.05;  // first tried: rejected (error 25)
   o.t_end = 0.2;
-  o.rtol = 1e-6;
-  o.atol = 1e-9;
+  o.tolerances = Tolerances(1e-6, 1e-9);
   std::vector<std::vector<double>> runs;
   long rejected = 0;
   for (const char* name : {"i", "pi", "pid"}) {
