@@ -15,8 +15,8 @@
 #include <gsl/gsl_odeiv2.h>
 
 #include "bench/side_by_side.hpp"
+#include "integrators/families/gsl/gsl.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/steppers/gsl.hpp"
 #include "problems/scene.hpp"
 
 namespace {

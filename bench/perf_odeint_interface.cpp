@@ -18,8 +18,8 @@
 #include <functional>
 
 #include "bench/side_by_side.hpp"
+#include "integrators/families/odeint/odeint.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/steppers/odeint.hpp"
 #include "problems/scene.hpp"
 
 namespace {

@@ -27,8 +27,8 @@
 
 #include "bench/hand_coded_ball.hpp"
 #include "bench/side_by_side.hpp"
+#include "integrators/families/gsl/gsl.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/steppers/gsl.hpp"
 #include "problems/scene.hpp"
 
 namespace {

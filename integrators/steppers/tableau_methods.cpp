@@ -1,10 +1,10 @@
 #include "integrators/steppers/tableau_methods.hpp"
 
 #include "integrators/controllers/controller.hpp"
-#include "integrators/steppers/flat_embedded.hpp"
-#include "integrators/steppers/munthe_kaas.hpp"
-#include "integrators/steppers/munthe_kaas_adaptive.hpp"
-#include "integrators/steppers/runge_kutta.hpp"
+#include "integrators/families/rk/flat_embedded.hpp"
+#include "integrators/families/rk/runge_kutta.hpp"
+#include "integrators/families/rkmk/munthe_kaas.hpp"
+#include "integrators/families/rkmk/munthe_kaas_adaptive.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {

@@ -1,5 +1,5 @@
 // The recipe "Add your own integrator" of docs/extending.md followed to the letter by
-// integrators/steppers/explicit_midpoint.hpp (one stepper made an integrator by
+// integrators/families/rk/explicit_midpoint.hpp (one stepper made an integrator by
 // stepped_method, one registry line): the registry, the runner and the report
 // pick it up with no other change. The registry-wide tests (order,
 // conformance) check it too.

@@ -6,8 +6,8 @@
 
 #include <cmath>
 
+#include "integrators/families/baselines/baselines.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/steppers/baselines.hpp"
 #include "problems/scene.hpp"
 #include "problems/so3.hpp"
 #include "tests/integrators/convergence.hpp"

@@ -9,10 +9,10 @@
 #include <string>
 
 #include "integrators/controllers/controller.hpp"
-#include "integrators/methods/cf4.hpp"
-#include "integrators/methods/cg3.hpp"
+#include "integrators/families/exp_product/cf4.hpp"
+#include "integrators/families/exp_product/cg3.hpp"
+#include "integrators/families/exp_product/exp_product.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/steppers/exp_product.hpp"
 #include "problems/cayley.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"
@@ -115,7 +115,7 @@ TEST(CfCg, DeclaredOrderInEveryComponentWithAndWithoutFeedback) {
 }
 
 // Composed the other way round, the update's h^3 commutator term has the
-// wrong sign (integrators/methods/cg3.hpp): order 2 in R, and where R feeds back in
+// wrong sign (integrators/families/exp_product/cg3.hpp): order 2 in R, and where R feeds back in
 // every component. Printed for docs/integrators.md; the prediction asserted.
 TEST(CfCg, ReversedCompositionLosesOrder) {
   for (const char* name : {"cf4-reversed", "cg3-reversed", "cg4a-reversed"}) {

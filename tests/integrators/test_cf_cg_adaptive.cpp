@@ -9,10 +9,10 @@
 #include <stdexcept>
 
 #include "integrators/controllers/controller.hpp"
-#include "integrators/methods/cf4.hpp"
-#include "integrators/methods/cg3.hpp"
+#include "integrators/families/exp_product/cf4.hpp"
+#include "integrators/families/exp_product/cg3.hpp"
+#include "integrators/families/exp_product/exp_product.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/steppers/exp_product.hpp"
 #include "problems/scene.hpp"
 #include "problems/so3.hpp"
 #include "tests/integrators/convergence.hpp"

@@ -7,8 +7,8 @@
 
 #include <thread>
 
+#include "integrators/families/gsl/gsl.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/steppers/gsl.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"

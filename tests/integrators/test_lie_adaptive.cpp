@@ -9,13 +9,13 @@
 #include <cmath>
 #include <map>
 
+#include "integrators/families/rkmk/munthe_kaas_adaptive.hpp"
 #include "integrators/methods/bogacki_shampine32.hpp"
 #include "integrators/methods/dormand_prince54.hpp"
 #include "integrators/methods/dormand_prince853.hpp"
 #include "integrators/methods/fehlberg78.hpp"
 #include "integrators/order_conditions.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/steppers/munthe_kaas_adaptive.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"

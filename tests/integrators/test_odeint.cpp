@@ -5,8 +5,8 @@
 
 #include <thread>
 
+#include "integrators/families/odeint/odeint.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/steppers/odeint.hpp"
 #include "problems/input_error.hpp"
 #include "problems/scene.hpp"
 #include "tests/integrators/convergence.hpp"

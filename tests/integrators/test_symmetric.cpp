@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "bench/lib/reversibility.hpp"
-#include "integrators/methods/gauss.hpp"
+#include "integrators/families/symmetric/lie_midpoint.hpp"
+#include "integrators/families/symmetric/gauss_tableaux.hpp"
 #include "integrators/registry.hpp"
-#include "integrators/steppers/lie_midpoint.hpp"
 #include "integrators/steppers/newton.hpp"
 #include "problems/jacobian.hpp"
 #include "problems/so3.hpp"
