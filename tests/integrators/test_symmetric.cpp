@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "bench/lib/reversibility.hpp"
-#include "integrators/families/symmetric/lie_midpoint.hpp"
 #include "integrators/families/symmetric/gauss_tableaux.hpp"
+#include "integrators/families/symmetric/lie_midpoint.hpp"
 #include "integrators/registry.hpp"
 #include "integrators/steppers/newton.hpp"
 #include "problems/jacobian.hpp"

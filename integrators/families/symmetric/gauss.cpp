@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "integrators/families/symmetric/composition.hpp"
-#include "integrators/families/symmetric/lie_midpoint.hpp"
 #include "integrators/families/symmetric/gauss_tableaux.hpp"
+#include "integrators/families/symmetric/lie_midpoint.hpp"
 #include "integrators/steppers/newton.hpp"
 #include "integrators/steppers/stepped_method.hpp"
 #include "problems/jacobian.hpp"
