@@ -102,10 +102,13 @@ struct Cost {
 
   // One stage's margins: counted, and kept when beyond a limit. Branch-free
   // but for the rare failure; inlined into every stage (out of line in the
-  // adaptive steppers it cost 30 instructions a step).
+  // adaptive steppers it cost 30 instructions a step). WatchNear = false
+  // leaves watch.near alone: for a stepper run only by drive_fixed_step,
+  // which never reads it (the test cost about 20 instructions a stage).
+  template <bool WatchNear = true>
   [[gnu::always_inline]] void note(const ModelMargins& m) {
     ++validity_checks;
-    watch.near |= m.near_curvature_limit();
+    if constexpr (WatchNear) watch.near |= m.near_curvature_limit();
     if (!Problem::within_model(m)) [[unlikely]] {
       if (!watch.beyond) watch.first = m;
       watch.beyond = true;
@@ -122,11 +125,11 @@ struct Cost {
   problem.flat_rhs(y, dy, m);
   cost.note(m);
 }
+// The margins come back by value, so that they stay in registers.
+template <bool WatchNear = true>
 [[gnu::always_inline]] inline void stage_lie_rhs(const Problem& problem, const Mat3& R, const double* z, double* omega,
                                                  double* dz, Cost& cost) {
-  ModelMargins m;
-  problem.lie_rhs(R, z, omega, dz, m);
-  cost.note(m);
+  cost.note<WatchNear>(problem.model().lie_rhs_margins(R, z, omega, dz));
 }
 // The same on the model's code path General (RollingBall::has_inertia()),
 // fixed at compile time by a stepper that chose it once per run.

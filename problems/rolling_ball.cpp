@@ -37,6 +37,8 @@ double ModelMargins::r_kappa_max() const {
 
 RollingBall::RollingBall(Landscape landscape, BallParams params) : landscape_(std::move(landscape)), p_(params) {
   const double mr2 = p_.mass * p_.radius * p_.radius;
+  mr2_ = mr2;
+  mrg_ = p_.mass * p_.radius * p_.gravity;
   const Vec3* I = p_.inertia ? &*p_.inertia : nullptr;
   general_ = I != nullptr;
   anisotropic_ = I && !((*I)[0] == (*I)[1] && (*I)[1] == (*I)[2]);

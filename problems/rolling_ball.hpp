@@ -132,11 +132,17 @@ class RollingBall {
   // The same, also filling the validity margins at (R, z).
   [[gnu::always_inline]] void lie_rhs(const Mat3& R, const double* z, double* omega, double* dz,
                                       ModelMargins& margins) const {
+    margins = lie_rhs_margins(R, z, omega, dz);
+  }
+  // The same, returning the margins: a stage that takes them by value keeps
+  // them in registers (filled through a reference they stayed in memory,
+  // their NaN initialisation stored before the landscape's call).
+  [[gnu::always_inline]] ModelMargins lie_rhs_margins(const Mat3& R, const double* z, double* omega, double* dz) const {
     if (general_) [[unlikely]]
-      return lie_rhs_general(R, z, omega, dz, margins);
+      return lie_rhs_general_margins(R, z, omega, dz);
     const Kinematics<double> k = kinematics<false>(R, z);
     store_lie(k, omega, dz);
-    margins = margins_of(k);
+    return margins_of(k);
   }
 
   // Whether the ball has principal moments (the general code path of
@@ -196,11 +202,11 @@ class RollingBall {
   [[gnu::noinline]] void lie_rhs_general(const Mat3& R, const T* z, T* omega, T* dz) const {
     store_lie(kinematics<true>(R, z), omega, dz);
   }
-  [[gnu::noinline]] void lie_rhs_general(const Mat3& R, const double* z, double* omega, double* dz,
-                                         ModelMargins& margins) const {
+  [[gnu::noinline]] ModelMargins lie_rhs_general_margins(const Mat3& R, const double* z, double* omega,
+                                                         double* dz) const {
     const Kinematics<double> k = kinematics<true>(R, z);
     store_lie(k, omega, dz);
-    margins = margins_of(k);
+    return margins_of(k);
   }
   template <class T>
   [[gnu::noinline]] void flat_rhs_general(const T* y, T* dy) const {
@@ -255,6 +261,11 @@ class RollingBall {
   double theta_ = 0.0;         // the moment of a ball with equal ones
   double iso_scale_ = 0.0;     // s and c of T^-1 for equal moments (see kinematics)
   double iso_normal_ = 0.0;
+  // m r^2 and m r g0, computed once: every evaluation formed them (and the
+  // homogeneous ball's (5 / 7) / (m r^2), now iso_scale_, by a division),
+  // the ball's parameters read again after each call of the landscape
+  double mr2_ = 0.0;
+  double mrg_ = 0.0;
 };
 
 inline ModelMargins RollingBall::margins_of(const Kinematics<double>& k) const {
@@ -308,7 +319,7 @@ template <bool General, class T, class Rot>
 Kinematics<T> RollingBall::kinematics(const Rot& R, const T* z) const {
   using std::sqrt;
   Kinematics<T> k;
-  const double r = p_.radius, m = p_.mass;
+  const double r = p_.radius;
   k.f = landscape_.slopes(z[3], z[4]);
   const Jet2<T>& f = k.f;
 
@@ -332,7 +343,7 @@ Kinematics<T> RollingBall::kinematics(const Rot& R, const T* z) const {
   // s = 1 / (theta + m r^2), c = m r^2 / theta (homogeneous: s = (5/7) / (m r^2), c = 5/2)
   T w0, w1, w2;
   if constexpr (!General) {
-    const double s = (5.0 / 7.0) / (m * r * r);
+    const double s = iso_scale_;  // (5 / 7) / (m r^2), computed once (the constructor)
     const T Nv = 2.5 * (N0 * z[0] + N1 * z[1] + N2 * z[2]);
     w0 = (z[0] + N0 * Nv) * s, w1 = (z[1] + N1 * Nv) * s, w2 = (z[2] + N2 * Nv) * s;
   } else if (anisotropic_) {
@@ -354,7 +365,7 @@ Kinematics<T> RollingBall::kinematics(const Rot& R, const T* z) const {
   // v' = m r (N x g) - m r^2 (N' alpha') x (N x omega), g = (0, 0, -g0);
   // N x omega = -(omega x N) = -q
   const T d0 = Nx0 * ax + Ny0 * ay, d1 = Nx1 * ax + Ny1 * ay, d2 = Nx2 * ax + Ny2 * ay;  // N' alpha'
-  const double mrg = m * r * p_.gravity, mr2 = m * r * r;
+  const double mrg = mrg_, mr2 = mr2_;
 
   // element by element, not with Eigen's comma initializer: GCC calls that
   // out of line (36 instructions a step of rk4, callgrind), and a call

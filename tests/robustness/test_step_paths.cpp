@@ -88,5 +88,24 @@ TEST(StepPaths, RunsFarFromTheLimitsCheckNoPath) {
   EXPECT_EQ(r.cost.validity_checks, r.cost.rhs_evals - 2 + 2);
 }
 
+// Only the adaptive driver reads whether a stage came near the curvature
+// limit (Cost::watch.near), so the fixed-step RKMK stages leave that test out
+// (MkStep::kWatchNear): on the steep bowl, which both runs pass r kappa =
+// 1/2 on, the adaptive run records it, rkmk4 does not and still stops at the
+// curvature limit where the exact path reaches it.
+TEST(StepPaths, OnlyTheAdaptiveRunsWatchForTheCurvatureLimitsApproach) {
+  const Problem p = data_problem(kSteepBowl);
+  const Integrator& adaptive = find_integrator("rkmk-dp54-adaptive");
+  const RunResult a = adaptive.integrate(p, options_for(adaptive, 1.0, 0.0, 1e-8, 0.1));
+  EXPECT_EQ(status_name(a.status), status_name(Status::curvature)) << a.message;
+  EXPECT_TRUE(a.cost.watch.near);
+  const Integrator& fixed = find_integrator("rkmk4");
+  const RunResult f = fixed.integrate(p, options_for(fixed, 1.0, 1e-3, 0.0, 0.1));
+  EXPECT_EQ(status_name(f.status), status_name(Status::curvature)) << f.message;
+  EXPECT_GT(f.stop_time, 0.41);
+  EXPECT_LT(f.stop_time, 0.44);
+  EXPECT_FALSE(f.cost.watch.near);
+}
+
 }  // namespace
 }  // namespace rb::robustness
