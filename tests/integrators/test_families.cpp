@@ -38,7 +38,10 @@ void register_test_family(MethodList& list) {
 
 TEST(Families, TheRegistryStartsWithEveryFamilysMethodsInFamilyOrder) {
   const MethodList builtin = builtin_methods();
-  ASSERT_GT(builtin.size(), 90u);
+  // the first family line's first method, the last line's last
+  ASSERT_FALSE(builtin.empty());
+  EXPECT_EQ(builtin.front()->name(), "euler");
+  EXPECT_EQ(builtin.back()->info().family, "gsl");
   ASSERT_LE(builtin.size(), registry().size());  // then those added at run time
   for (std::size_t i = 0; i < builtin.size(); ++i) EXPECT_EQ(builtin[i]->name(), registry()[i]->name()) << i;
 }
