@@ -201,10 +201,12 @@ Report report_from_json(const json& j, const std::string& file) {
   const auto carried = report_parts::carried_sections(report);
   for (const auto& [key, value] : carried) *value = j.contains(key) ? j.at(key) : json();
   const auto typed = report_parts::kTypedReportKeys;
-  for (const auto& [key, value] : j.items())
+  for (const auto& item : j.items()) {
+    const std::string& key = item.key();  // not a structured binding: clang 14 cannot capture one
     if (std::none_of(typed.begin(), typed.end(), [&](const char* k) { return key == k; }) &&
         std::none_of(carried.begin(), carried.end(), [&](const auto& c) { return key == c.first; }))
-      report.other[key] = value;
+      report.other[key] = item.value();
+  }
   return report;
 }
 
