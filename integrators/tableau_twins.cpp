@@ -46,7 +46,7 @@ Propagated propagated(const Tableau& t) {
 
 std::optional<std::string> shipped_twin(const Tableau& tableau) {
   namespace m = methods;
-  // the flat integrator each shipped tableau is registered as (integrators/registry.cpp)
+  // the flat integrator each shipped tableau is registered as (integrators/families/rk/register_rk.cpp)
   const std::vector<std::pair<std::string, Tableau>> shipped = {
       {"euler", m::euler()},
       {"heun", m::heun()},
