@@ -1,7 +1,7 @@
 #pragma once
 // A tableau's non-zero stage terms, as every tableau stepper sums them in its
 // step loop: the fixed-step ones (runge_kutta.cpp, munthe_kaas.cpp), the
-// exponential products (exp_product_stages.hpp) and the embedded pairs
+// exponential products (exp_product_stepper.hpp) and the embedded pairs
 // (flat_embedded.cpp, munthe_kaas_adaptive.cpp). The one stage-sum type.
 #include <array>
 #include <cstddef>

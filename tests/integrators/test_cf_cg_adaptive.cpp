@@ -1,7 +1,8 @@
 // cg3-adaptive: cg3 with the embedded order-2 weights of Engo and
 // Marthinsen. The weights against their order conditions, R on SO(3), the
 // error falling with the tolerance on a closed-form scene and where R feeds
-// back, and the counts of an attempt.
+// back, and the counts of an attempt. The one stepper: a pair's step is its
+// fixed method's bit for bit.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +13,7 @@
 #include "integrators/families/exp_product/cf4.hpp"
 #include "integrators/families/exp_product/cg3.hpp"
 #include "integrators/families/exp_product/exp_product.hpp"
+#include "integrators/families/exp_product/exp_product_stepper.hpp"
 #include "integrators/registry.hpp"
 #include "problems/scene.hpp"
 #include "problems/so3.hpp"
@@ -196,6 +198,59 @@ TEST(CgAdaptive, CountsRhsAndExponentialsPerAttempt) {
     EXPECT_EQ(run.cost.dexpinv_evals, 0) << name;
     EXPECT_EQ(run.cost.validity_checks, run.cost.rhs_evals + 2) << name;  // every stage, the start, the end
   }
+}
+
+// The one stage loop: an attempt of the pair (step<true>) and the fixed
+// step of the scheme without its embedded update (step<false>) give the
+// same new state bit for bit, step after step, where R feeds back
+// (chaplygin-valley: stage orientations) and where it does not.
+TEST(ExpProductStepper, PairsStepIsTheFixedStepBitForBit) {
+  const std::pair<ExpProductScheme, ExpProductScheme> schemes[] = {{methods::cf4(), methods::cf4_pair()},
+                                                                   {methods::cg3(), methods::cg3_pair()}};
+  for (const auto& [fixed_scheme, pair_scheme] : schemes)
+    for (const char* name : {"valley-sideways", "chaplygin-valley"}) {
+      const Problem& p = scene(name);
+      const ExpPlan fixed_plan = plan_of(fixed_scheme), pair_plan = plan_of(pair_scheme);
+      ExpProductStepper fixed(p, fixed_plan);
+      ExpProductStepper pair(p, pair_plan, Tolerances(1e-8, 1e-8));
+      Cost fixed_cost, pair_cost;
+      FlatState y = p.y0(), next = y, paired = y;
+      double t = 0.0;
+      for (int n = 0; n < 20; ++n) {
+        const double h = 0.01 * (1.0 + 0.1 * n);  // steps of changing size, as a controller takes them
+        fixed(y, next, t, h, fixed_cost);
+        const double err = pair.try_step(t, h, pair_cost);
+        ASSERT_TRUE(std::isfinite(err)) << name;
+        EXPECT_GT(err, 0.0) << name;  // the estimate was computed
+        pair.accept(t, h, pair_cost);
+        pair.state(paired);
+        ASSERT_TRUE((paired.array() == next.array()).all())
+            << pair_scheme.name << "'s pair on " << name << ", step " << n << ": " << (paired - next).transpose();
+        y = next;
+        t += h;
+      }
+      // the pair's extra work: cf4_pair's fifth stage, the embedded update
+      EXPECT_EQ(pair_cost.rhs_evals - fixed_cost.rhs_evals, 20 * (pair_plan.stages - fixed_plan.stages)) << name;
+      EXPECT_GT(pair_cost.exp_evals, fixed_cost.exp_evals) << name;
+    }
+}
+
+// A pair's scheme at constant steps computes only the stages its update
+// reads: cf4_pair's fifth stage (for the embedded update) is left out, so it
+// is cf4, results and counts.
+TEST(ExpProductStepper, PairSchemeAtConstantStepsIsItsFixedMethod) {
+  const std::unique_ptr<Integrator> m = exp_product_method(methods::cf4_pair(), "cf4-pair", kConstantController);
+  EXPECT_FALSE(m->adaptive());
+  EXPECT_EQ(m->description().rfind("4-stage commutator-free method", 0), 0u) << m->description();
+  EXPECT_EQ(exponentials_per_step(methods::cf4_pair(), true), exponentials_per_step(methods::cf4(), true));
+  const Problem& p = scene("chaplygin-valley");
+  const RunResult a = m->integrate(p, testing::fixed(0.01, 1.0));
+  const RunResult b = find_integrator("cf4").integrate(p, testing::fixed(0.01, 1.0));
+  ASSERT_EQ(a.status, Status::ok) << a.message;
+  EXPECT_TRUE((a.final_state.array() == b.final_state.array()).all()) << (a.final_state - b.final_state).transpose();
+  EXPECT_EQ(a.cost.rhs_evals, 4 * a.cost.steps);
+  EXPECT_EQ(a.cost.rhs_evals, b.cost.rhs_evals);
+  EXPECT_EQ(a.cost.exp_evals, b.cost.exp_evals);
 }
 
 }  // namespace

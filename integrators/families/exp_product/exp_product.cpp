@@ -5,8 +5,8 @@
 #include <stdexcept>
 
 #include "integrators/controllers/controller.hpp"
-#include "integrators/families/exp_product/exp_product_adaptive.hpp"
-#include "integrators/families/exp_product/exp_product_stages.hpp"
+#include "integrators/families/exp_product/exp_product_stepper.hpp"
+#include "integrators/steppers/adaptive_method.hpp"
 #include "integrators/steppers/stepped_method.hpp"
 
 namespace rb {
@@ -80,44 +80,88 @@ ExpPlan plan_of(const ExpProductScheme& scheme) {
     throw std::invalid_argument(scheme.name + ": the embedded update needs at most 16 exponentials");
   plan.embedded = plan_product(embedded, s, scheme.name + " embedded update", 1);
   plan.z_embedded = z_row_of(embedded, s);
+  if (scheme.embedded_order > 0) plan.error_order = std::min(scheme.order, scheme.embedded_order) + 1;
+  // the stages the update reads, and those they read (each only earlier ones)
+  plan.propagating = 1;
+  auto reads = [&plan](const ExpRow& row) {
+    if (row.count > 0)
+      plan.propagating = std::max(plan.propagating, row.index[static_cast<std::size_t>(row.count - 1)] + 1);
+  };
+  for (std::size_t n = 0; n < static_cast<std::size_t>(plan.update.count); ++n) reads(plan.update.factor[n]);
+  reads(plan.z_update);
   return plan;
-}
-
-int exponentials_per_step(const ExpProductScheme& scheme, bool anisotropic) {
-  const ExpPlan plan = plan_of(scheme);
-  int n = plan.update.count;
-  if (anisotropic)
-    for (std::size_t i = 1; i < static_cast<std::size_t>(plan.stages); ++i) n += plan.stage[i].count;
-  return n;
 }
 
 namespace {
 
-// (plan_of, through the counts, rejects a malformed scheme here, not in a run)
-MethodInfo facts_of(const ExpProductScheme& scheme) {
+// the exponentials of a fixed step over the stages the update reads
+int exponentials_of(const ExpPlan& plan, bool anisotropic) {
+  int n = plan.update.count;
+  if (anisotropic)
+    for (std::size_t i = 1; i < static_cast<std::size_t>(plan.propagating); ++i) n += plan.stage[i].count;
+  return n;
+}
+
+MethodInfo fixed_facts(const ExpProductScheme& scheme, const ExpPlan& plan) {
   return {.name = scheme.name,
           .family = scheme.family,
           .declared_order = scheme.order,
           .rotation_order = scheme.rotation_order,
-          .description = std::to_string(scheme.stages.size()) + "-stage " + scheme.kind +
-                         " method on the Lie-group view, " + std::to_string(exponentials_per_step(scheme, true)) +
-                         " exponentials a step (" + std::to_string(exponentials_per_step(scheme, false)) +
+          .description = std::to_string(plan.propagating) + "-stage " + scheme.kind +
+                         " method on the Lie-group view, " + std::to_string(exponentials_of(plan, true)) +
+                         " exponentials a step (" + std::to_string(exponentials_of(plan, false)) +
                          " for a homogeneous ball): " + scheme.source,
+          .on_group = true};
+}
+
+// Throws std::invalid_argument for a scheme without an embedded update.
+MethodInfo adaptive_facts(const ExpProductScheme& scheme, const ExpPlan& plan, const std::string& controller) {
+  if (scheme.embedded_order < 1 || plan.embedded.count == 0)
+    throw std::invalid_argument(scheme.name + ": an adaptive method needs an embedded update and its order");
+  int stage_exps = 0;
+  for (std::size_t i = 1; i < static_cast<std::size_t>(plan.stages); ++i) stage_exps += plan.stage[i].count;
+  const int update_exps = plan.update.count + plan.embedded.count;
+  return {.name = scheme.name,
+          .family = scheme.family + "-adaptive",
+          .declared_order = scheme.order,
+          .embedded_order = scheme.embedded_order,
+          .controller = controller,
+          .description = "adaptive " + scheme.kind + " method, order " + std::to_string(scheme.order) +
+                         " with an embedded order-" + std::to_string(scheme.embedded_order) +
+                         " update (error on (rotation vector, z), " + controller_title(controller) + " controller): " +
+                         std::to_string(plan.stages - 1) + " rhs and " + std::to_string(stage_exps + update_exps) +
+                         " exponentials an attempt (" + std::to_string(update_exps) +
+                         " for a homogeneous ball); steps clamped onto the outputs: " + scheme.source,
           .on_group = true};
 }
 
 }  // namespace
 
+int exponentials_per_step(const ExpProductScheme& scheme, bool anisotropic) {
+  return exponentials_of(plan_of(scheme), anisotropic);
+}
+
 std::unique_ptr<Integrator> exp_product_method(ExpProductScheme scheme, std::string name,
                                                const std::string& controller) {
   scheme.name = std::move(name);
-  if (controller != kConstantController) return exp_product_adaptive(std::move(scheme), controller);
-  MethodInfo info = facts_of(scheme);
-  return stepped_method(std::move(info), [plan = plan_of(scheme)](const Problem& problem, auto&& drive) {
-    std::array<Vec3, kMaxStages> K;
-    std::array<ZState, kMaxStages> L;
-    std::array<Mat3, kMaxStages> Rs;
-    return drive(ExpProductStep{problem, plan, problem.model().anisotropic(), K, L, Rs});
+  const bool fixed = controller == kConstantController;
+  if (!fixed) (void)filter_controller(controller);  // throws for an unknown one
+  // (plan_of rejects a malformed scheme here, not in a run)
+  ExpPlan plan = plan_of(scheme);
+  MethodInfo info = fixed ? fixed_facts(scheme, plan) : adaptive_facts(scheme, plan, controller);
+  // the one stepper of both ways of stepping, made for a run (its stage
+  // storage in this frame); tol: none at fixed steps
+  auto with_stepper = [plan = std::move(plan)](const Problem& problem, const Tolerances& tol, auto&& drive) {
+    ExpProductStepper stepper(problem, plan, tol);
+    return drive(stepper);
+  };
+  if (fixed)
+    return stepped_method(std::move(info), [with = std::move(with_stepper)](const Problem& problem, auto&& drive) {
+      return with(problem, Tolerances(), drive);
+    });
+  return adaptive_method(std::move(info), [with = std::move(with_stepper)](const Problem& problem, const RunOptions&,
+                                                                           const Tolerances& tol, auto&& drive) {
+    return with(problem, tol, drive);
   });
 }
 

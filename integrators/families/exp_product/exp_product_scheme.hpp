@@ -8,8 +8,8 @@
 // and R_{n+1}, is a product of exponentials of sums of frozen fields applied
 // to R_n; on SO(3) x R^5 the z part of such a product is a plain sum, so only
 // the order of the SO(3) factors matters. The schemes themselves are files
-// under integrators/methods/ (cf4.hpp, cg3.hpp, cg4a.hpp); their stepper is
-// integrators/families/exp_product/exp_product.hpp.
+// beside this one (cf4.hpp, cg3.hpp, cg4a.hpp, ...); their stepper is
+// exp_product_stepper.hpp, their integrators exp_product.hpp.
 #include <string>
 #include <vector>
 
