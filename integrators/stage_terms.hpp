@@ -1,8 +1,8 @@
 #pragma once
 // A tableau's non-zero stage terms, as every tableau stepper sums them in its
-// step loop: the fixed-step ones (runge_kutta.cpp, munthe_kaas.cpp), the
-// exponential products (exp_product_stepper.hpp) and the embedded pairs
-// (flat_embedded.cpp, munthe_kaas_adaptive.cpp). The one stage-sum type.
+// one stage loop, fixed steps and embedded pairs alike: the rk family's
+// (rk_stepper.hpp), the RKMK ones (families/rkmk/) and the exponential
+// products' (exp_product_stepper.hpp). The one stage-sum type.
 #include <array>
 #include <cstddef>
 
@@ -11,7 +11,7 @@
 namespace rb {
 
 // A tableau's non-zero coefficients, gathered once per run so that the step
-// loops of the tableau steppers (runge_kutta.cpp, munthe_kaas.cpp) skip the
+// loops of the tableau steppers (rk_stepper.hpp, munthe_kaas.cpp) skip the
 // zeros without testing them and read no std::vector in the step.
 struct StageTerms {
   struct Row {

@@ -1,8 +1,6 @@
 #include "integrators/steppers/tableau_methods.hpp"
 
 #include "integrators/controllers/controller.hpp"
-#include "integrators/families/rk/flat_embedded.hpp"
-#include "integrators/families/rk/runge_kutta.hpp"
 #include "integrators/families/rkmk/munthe_kaas.hpp"
 #include "integrators/families/rkmk/munthe_kaas_adaptive.hpp"
 #include "problems/input_error.hpp"
@@ -13,11 +11,6 @@ void require_embedded_pair(const Tableau& tableau, const std::string& controller
   (void)filter_controller(controller);  // throws for an unknown one
   if (!tableau.has_error_estimate())
     throw InputError("tableau '" + tableau.name() + "' has no embedded weights for an adaptive method", "e");
-}
-
-std::unique_ptr<Integrator> rk_method(Tableau tableau, std::string name, const std::string& controller) {
-  if (controller == kConstantController) return rk_fixed(std::move(tableau), std::move(name));
-  return rk_adaptive(std::move(tableau), std::move(name), controller);
 }
 
 std::unique_ptr<Integrator> rkmk_method(Tableau tableau, std::string name, const std::string& controller,

@@ -4,9 +4,9 @@
 //   rkmk_method(methods::dormand_prince54(), "rkmk5", kConstantController)
 //   rkmk_method(methods::dormand_prince54(), "rkmk-dp54-adaptive", "pi")
 // - "constant": fixed steps of h with the tableau's propagating weights only
-//   (rk_fixed, rkmk_fixed: stepped_method): no error estimate is computed;
+//   (stepped_method): no error estimate is computed;
 // - a filter ("i", "pi", "pid"; integrators/controllers/): adaptive steps on
-//   the tableau's embedded pair (rk_adaptive, rkmk_adaptive: adaptive_method),
+//   the tableau's embedded pair (adaptive_method),
 //   with that filter as the method's default.
 // The family says the way of stepping, with "-adaptive" for the pairs: rk,
 // rk-adaptive, rkmk, rkmk-adaptive.
@@ -19,7 +19,9 @@
 
 namespace rb {
 
-// Classical explicit RK on the flat view (family "rk", or "rk-adaptive").
+// Classical explicit RK on the flat view (family "rk", or "rk-adaptive"),
+// both with the one stepper of families/rk/rk_stepper.hpp (made in
+// families/rk/runge_kutta.cpp).
 std::unique_ptr<Integrator> rk_method(Tableau tableau, std::string name, const std::string& controller);
 
 // Runge-Kutta-Munthe-Kaas on the Lie-group view (family "rkmk", or
