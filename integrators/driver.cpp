@@ -43,8 +43,6 @@ Validity model_limit(const Problem& problem, const ModelMargins& m, bool non_fin
 
 const Tolerances& tolerances_of(const RunOptions& options) {
   if (!options.tolerances.given()) throw InputError("an adaptive method needs rtol > 0 or atol > 0", "rtol");
-  if (!std::isfinite(options.h) || options.h < 0.0)
-    throw InputError("the initial step h must be finite and >= 0 (0 chooses one)", "h");
   return options.tolerances;
 }
 

@@ -60,12 +60,12 @@ namespace rb {
 template <class StepFn>
 RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, StepFn&& step) {
   constexpr bool writes_next = std::is_invocable_v<StepFn&, const FlatState&, FlatState&, double, double, Cost&>;
-  if (!(options.h > 0.0) || !std::isfinite(options.h)) throw InputError("a fixed-step method needs a step h > 0", "h");
+  const double h_given = options.h.fixed_step();
   RunBook book(problem, options);
   Cost& cost = book.cost();
   std::array<FlatState, 3> states = {problem.y0(), problem.y0(), FlatState()};  // rotated each step
   FlatState *before = &states[0], *y = &states[1], *next = &states[2];
-  double t_before = 0.0, t = 0.0, h_step = options.h;  // h_step: the step being taken
+  double t_before = 0.0, t = 0.0, h_step = h_given;  // h_step: the step being taken
   // a stage of the step of h from y beyond a limit: the run stops at y, or before it (y beyond it too)
   auto stop_at_limit = [&](const Validity& limit, double h) {
     if (const Validity at = book.check_model_at(*y, t); at.status != Status::ok)
@@ -77,7 +77,7 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
   try {
     for (const double t_out : book.outputs()) {
       const double span = t_out - t;
-      const double n_real = std::ceil(span / options.h - 1e-6);  // the slack: see above
+      const double n_real = std::ceil(span / h_given - 1e-6);  // the slack: see above
       if (n_real > 1e15) return book.stop(Status::max_steps, "the step count overflows", *y, t);
       const long n = std::max(1L, static_cast<long>(n_real));
       const double h = span / static_cast<double>(n);
@@ -120,8 +120,8 @@ RunResult drive_fixed_step(const Problem& problem, const RunOptions& options, St
 
 // The tolerances of an adaptive run, options.tolerances (Tolerances,
 // integrators/tolerances.hpp: checked where they entered), which it needs
-// given (InputError "rtol" otherwise); also that the initial step options.h
-// is finite and >= 0 (0 = automatic; InputError "h").
+// given (InputError "rtol" otherwise). The initial step options.h was
+// checked where it entered (StepSize, integrators/step_size.hpp).
 const Tolerances& tolerances_of(const RunOptions& options);
 
 // The smallest step time can resolve near t: a controller proposing less is

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "integrators/step_size.hpp"
 #include "integrators/tolerances.hpp"
 #include "problems/problem.hpp"
 
@@ -22,7 +23,7 @@ struct ControllerKind;  // integrators/controllers/controller.hpp
 // tolerance (docs/design.md, "Options are typed where they enter").
 struct RunOptions {
   double t_end = 0.0;     // 0 takes the problem's t_end
-  double h = 0.0;         // step of a fixed-step method; initial step (0 = automatic) of an adaptive one
+  StepSize h;             // step of a fixed-step method; initial step (0 = automatic) of an adaptive one
   Tolerances tolerances;  // of an adaptive method (checked on construction); none: a fixed-step run
   // Times at which the state is recorded, increasing, in (0, t_end]; t_end is
   // always recorded last. Empty: t_end only. Fixed-step methods land on them.

@@ -36,7 +36,7 @@ TEST(CliErrors, TrajectoryOptionsNameTheirOption) {
       {"trajectory plane --integrator rk4 --h 0.1 --rtol -1 --out OUT", 2,
        "rollbench: 'rtol': an adaptive method needs a finite tolerance >= 0\n"},
       {"trajectory plane --integrator odeint-dopri5-adaptive --rtol 1e-6 --h -1 --out OUT", 2,
-       "rollbench: 'h': the initial step h must be finite and >= 0 (0 chooses one)\n"},
+       "rollbench: 'h': the step h must be a finite number >= 0 (0: an adaptive method chooses its first step)\n"},
       {"trajectory plane --integrator rk4 --h 0.1 --dt-out 0.01 --out OUT", 2,
        "rollbench: 'dt-out': the output spacing must not be smaller than the step h = 0.100000\n"},
       {"trajectory plane --integrator rk5000 --h 0.1 --out OUT", 2,

@@ -317,14 +317,13 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
                         needs_jacobian() ? &jacobian_callback : nullptr, kFlatSize, &cb};
 
   if (drive_ == GslDrive::fixed_step) {
-    if (!(options.h > 0.0) || !std::isfinite(options.h))
-      throw InputError("a fixed-step method needs a step h > 0", "h");
+    const double h = options.h.fixed_step();
     // the implicit steppers read their Newton tolerance from the driver's
     // control (options.tolerances when given); explicit ones ignore it
     const Tolerances& given = options.tolerances;
     const double rtol = given.rtol() > 0.0 ? given.rtol() : kFixedStepNewtonTol;
     const double atol = given.atol() > 0.0 ? given.atol() : kFixedStepNewtonTol;
-    const DriverPtr driver(gsl_odeiv2_driver_alloc_standard_new(&sys, info.type(), options.h, atol, rtol, 1.0, 0.0));
+    const DriverPtr driver(gsl_odeiv2_driver_alloc_standard_new(&sys, info.type(), h, atol, rtol, 1.0, 0.0));
     if (!driver) return allocation_failure(problem, stepper);
     gsl_odeiv2_step* step = driver->s;
     FlatState yerr;
@@ -347,7 +346,7 @@ RunResult GslIntegrator::integrate(const Problem& problem, const RunOptions& opt
   // check of its options, once more: GSL allocates with them)
   const Tolerances& tol = tolerances_of(options);
   (void)output_times_of(problem, options);
-  const double h0 = options.h > 0.0 ? options.h : 1e-3 * t_end_of(problem, options);
+  const double h0 = options.h > 0.0 ? static_cast<double>(options.h) : 1e-3 * t_end_of(problem, options);
   const DriverPtr driver(gsl_odeiv2_driver_alloc_standard_new(&sys, info.type(), h0, tol.atol(), tol.rtol(), 1.0, 0.0));
   if (!driver) return allocation_failure(problem, stepper);
   GslEvolveStepper evolve(driver.get(), &sys, &cb, stepper, problem.y0());
