@@ -4,7 +4,6 @@
 #include "integrators/families/rk/flat_embedded.hpp"
 #include "integrators/families/rk/runge_kutta.hpp"
 #include "integrators/families/rkmk/munthe_kaas.hpp"
-#include "integrators/families/rkmk/munthe_kaas_adaptive.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {
@@ -22,16 +21,11 @@ std::unique_ptr<Integrator> rk_method(Tableau tableau, std::string name, const s
 
 std::unique_ptr<Integrator> rkmk_method(Tableau tableau, std::string name, const std::string& controller,
                                         DexpinvKind dexpinv) {
-  if (controller == kConstantController) return rkmk_fixed(std::move(tableau), std::move(name), dexpinv);
-  if (dexpinv != DexpinvKind::exact)
-    throw InputError("'" + name + "': only the closed-form dexpinv has an adaptive RKMK", "controller");
-  return rkmk_adaptive(std::move(tableau), std::move(name), controller);
+  return rkmk_integrator(std::move(tableau), std::move(name), controller, dexpinv);
 }
 
 std::unique_ptr<Integrator> rkmk_cayley_method(Tableau tableau, std::string name, const std::string& controller) {
-  if (controller != kConstantController)
-    throw InputError("'" + name + "': RKMK with the Cayley map runs at fixed steps only", "controller");
-  return rkmk_cayley_fixed(std::move(tableau), std::move(name));
+  return rkmk_cayley_integrator(std::move(tableau), std::move(name), controller);
 }
 
 }  // namespace rb
