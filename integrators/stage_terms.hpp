@@ -73,18 +73,6 @@ struct StageTerms {
       }
     }
 
-    // c_0 k[j_0] + c_1 k[j_1] + ..., summed from zero before any step size
-    // scales it: the embedded pairs' order of operations (their stage is
-    // y + h * combination, their error h * combination), which rounds
-    // differently from sum() above.
-    template <class V, class K>
-    [[gnu::always_inline]] V combination(const K& k) const {
-      V out = V::Zero();
-      for (std::size_t n = 0; n < static_cast<std::size_t>(count); ++n)
-        out += coeff[n] * k[static_cast<std::size_t>(index[n])];
-      return out;
-    }
-
    private:
     static constexpr int kShortVector = 5;
     // the same sums entry by entry, in the same order: (base + t_0) + t_1 + ...

@@ -151,7 +151,7 @@ inline double dexpinv_coefficient(double t2) {
 // dexpinv_u(w) = w - 1/2 u x w + (1/t^2)(1 - (t/2) cot(t/2)) u x (u x w),
 // t = |u| (dexpinv_coefficient). For |u| >= kDexpinvMaxAngle the exact form
 // is NaN, never a wrong number: a fixed-step RKMK run ends "chart-limit" at
-// the last valid state (rkmk_step.hpp), an adaptive step is rejected and
+// the last valid state (rkmk_stepper.hpp), an adaptive step is rejected and
 // shrunk. Inlined into the
 // stage loops, where kind is known for the whole run.
 [[gnu::always_inline]] inline Vec3 dexpinv(const Vec3& u, const Vec3& w, DexpinvKind kind = DexpinvKind::exact) {

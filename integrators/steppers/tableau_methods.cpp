@@ -2,7 +2,6 @@
 
 #include "integrators/controllers/controller.hpp"
 #include "integrators/families/rkmk/munthe_kaas.hpp"
-#include "integrators/families/rkmk/munthe_kaas_adaptive.hpp"
 #include "problems/input_error.hpp"
 
 namespace rb {
@@ -15,16 +14,11 @@ void require_embedded_pair(const Tableau& tableau, const std::string& controller
 
 std::unique_ptr<Integrator> rkmk_method(Tableau tableau, std::string name, const std::string& controller,
                                         DexpinvKind dexpinv) {
-  if (controller == kConstantController) return rkmk_fixed(std::move(tableau), std::move(name), dexpinv);
-  if (dexpinv != DexpinvKind::exact)
-    throw InputError("'" + name + "': only the closed-form dexpinv has an adaptive RKMK", "controller");
-  return rkmk_adaptive(std::move(tableau), std::move(name), controller);
+  return rkmk_integrator(std::move(tableau), std::move(name), controller, dexpinv);
 }
 
 std::unique_ptr<Integrator> rkmk_cayley_method(Tableau tableau, std::string name, const std::string& controller) {
-  if (controller != kConstantController)
-    throw InputError("'" + name + "': RKMK with the Cayley map runs at fixed steps only", "controller");
-  return rkmk_cayley_fixed(std::move(tableau), std::move(name));
+  return rkmk_cayley_integrator(std::move(tableau), std::move(name), controller);
 }
 
 }  // namespace rb

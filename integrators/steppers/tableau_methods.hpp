@@ -8,6 +8,9 @@
 // - a filter ("i", "pi", "pid"; integrators/controllers/): adaptive steps on
 //   the tableau's embedded pair (adaptive_method),
 //   with that filter as the method's default.
+// Both ways step with the family's one stepper (families/rk/rk_stepper.hpp,
+// families/rkmk/rkmk_stepper.hpp): the error estimate is computed only when
+// a controller asks for it.
 // The family says the way of stepping, with "-adaptive" for the pairs: rk,
 // rk-adaptive, rkmk, rkmk-adaptive.
 #include <memory>

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <map>
 
-#include "integrators/families/rkmk/munthe_kaas_adaptive.hpp"
+#include "integrators/families/rkmk/munthe_kaas.hpp"
 #include "integrators/methods/bogacki_shampine32.hpp"
 #include "integrators/methods/dormand_prince54.hpp"
 #include "integrators/methods/dormand_prince853.hpp"
@@ -124,7 +124,7 @@ TEST(LieAdaptive, DenseOutputsAreContinuousExtensionsOfTheirOrder) {
 
 TEST(LieAdaptive, RefusesTableauxWithoutAnErrorEstimate) {
   try {
-    (void)rkmk_adaptive(Tableau("rk2", 2, {0, 0, 1, 0}, {0.5, 0.5}, {0, 1}), "x");
+    (void)rkmk_integrator(Tableau("rk2", 2, {0, 0, 1, 0}, {0.5, 0.5}, {0, 1}), "x", "pi");
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), "'e': tableau 'rk2' has no embedded weights for an adaptive method");
@@ -206,8 +206,8 @@ TEST(LieAdaptive, DenseOutputAgreesWithSteppingToTheSameTime) {
 // Clamped steps (no dense output) record the same outputs to the tolerance.
 TEST(LieAdaptive, DenseAndClampedOutputsAgree) {
   const Problem& p = shipped_scene("bowl-3d");
-  const auto dense = rkmk_adaptive(methods::dormand_prince853(), "dense");
-  const auto clamped = rkmk_adaptive(methods::dormand_prince853(), "clamped", "pi", false);
+  const auto dense = rkmk_integrator(methods::dormand_prince853(), "dense", "pi");
+  const auto clamped = rkmk_integrator(methods::dormand_prince853(), "clamped", "pi", DexpinvKind::exact, false);
   const RunOptions o = tolerance_every(1e-9, 0.05, 2.0);
   const RunResult a = dense->integrate(p, o), b = clamped->integrate(p, o);
   ASSERT_EQ(a.status, Status::ok);

@@ -90,7 +90,7 @@ TEST(StepPaths, RunsFarFromTheLimitsCheckNoPath) {
 
 // Only the adaptive driver reads whether a stage came near the curvature
 // limit (Cost::watch.near), so the fixed-step RKMK stages leave that test out
-// (MkStep::kWatchNear): on the steep bowl, which both runs pass r kappa =
+// (RkmkStepper's step<false>): on the steep bowl, which both runs pass r kappa =
 // 1/2 on, the adaptive run records it, rkmk4 does not and still stops at the
 // curvature limit where the exact path reaches it.
 TEST(StepPaths, OnlyTheAdaptiveRunsWatchForTheCurvatureLimitsApproach) {

@@ -1,6 +1,6 @@
 #include "integrators/families/symmetric/lie_midpoint.hpp"
 
-#include "integrators/families/rkmk/rkmk_step.hpp"
+#include "integrators/families/rkmk/rkmk_stepper.hpp"
 #include "integrators/steppers/newton.hpp"
 #include "problems/so3.hpp"
 
