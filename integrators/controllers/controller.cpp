@@ -35,6 +35,19 @@ std::string controller_names() {
   return names;
 }
 
+void require_controller(std::string_view controller, std::initializer_list<std::string_view> supported,
+                        std::string_view method, std::string_view way) {
+  std::string takes;
+  for (const std::string_view name : supported) {
+    if (name == controller) return;
+    takes += (takes.empty() ? "'" : " or '") + std::string(name) + "'";
+  }
+  if (supported.size() == 1) takes += " only";
+  throw InputError("'" + std::string(method) + "': " + std::string(way) + " takes the controller " + takes + ", not '" +
+                       std::string(controller) + "'",
+                   "controller");
+}
+
 std::string controller_title(std::string_view name) {
   std::string title(name);
   for (char& ch : title) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));

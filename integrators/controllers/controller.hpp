@@ -12,6 +12,7 @@
 //                     fac_min, fac_max)
 // with fac_max = 1 right after a rejection; a rejected step shrinks by the
 // elementary rule h * max(fac_min, safety * err^(-1/k)).
+#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -43,6 +44,14 @@ std::string controller_names();
 // The filter called name; throws InputError (key "controller") naming the
 // known ones when there is none.
 const ControllerKind& filter_controller(std::string_view name);
+
+// What a way of stepping that takes only some controllers does with the one
+// its registry line names: nothing when it is among supported, otherwise
+// InputError (key "controller") naming the method, what it is and what it
+// takes, e.g. "'dg2': the discrete-gradient method takes the controller
+// 'constant' only, not 'pi'".
+void require_controller(std::string_view controller, std::initializer_list<std::string_view> supported,
+                        std::string_view method, std::string_view way);
 
 // The name as a description writes it: "pi" -> "PI".
 std::string controller_title(std::string_view name);

@@ -7,6 +7,7 @@
 
 #include <thread>
 
+#include "integrators/controllers/controller.hpp"
 #include "integrators/families/gsl/gsl.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
@@ -63,9 +64,9 @@ TEST(GslRegistry, NamesOrdersAndJacobians) {
 
 TEST(GslRegistry, VariableOrderIsAdaptiveOnlyAndUnknownSteppersFail) {
   for (const char* stepper : {"bsimp", "msadams", "msbdf"})
-    EXPECT_THROW(GslIntegrator(stepper, GslDrive::fixed_step), InputError) << stepper;
-  EXPECT_THROW(GslIntegrator("rk5", GslDrive::adaptive), InputError);
-  EXPECT_EQ(GslIntegrator("rk8pd", GslDrive::fixed_step).name(), "gsl-rk8pd");
+    EXPECT_THROW(GslIntegrator(stepper, std::string("gsl-") + stepper, kConstantController), InputError) << stepper;
+  EXPECT_THROW(GslIntegrator("rk5", "gsl-rk5-adaptive", kLibraryController), InputError);
+  EXPECT_EQ(GslIntegrator("rk8pd", "gsl-rk8pd", kConstantController).name(), "gsl-rk8pd");
 }
 
 // GSL's rk4 estimates its error by step doubling in every mode: one step is
@@ -81,7 +82,9 @@ TEST(GslCounters, FixedStepEvaluationsPerStep) {
     EXPECT_EQ(run.cost.rhs_evals, rhs * 100) << name;
     EXPECT_EQ(run.cost.jacobian_evals, 0) << name;
   }
-  EXPECT_EQ(GslIntegrator("rk8pd", GslDrive::fixed_step).integrate(valley(), fixed(0.01, 1.0)).cost.rhs_evals, 1300);
+  EXPECT_EQ(
+      GslIntegrator("rk8pd", "gsl-rk8pd", kConstantController).integrate(valley(), fixed(0.01, 1.0)).cost.rhs_evals,
+      1300);
 }
 
 // The implicit steppers build their Newton matrix from one Jacobian per

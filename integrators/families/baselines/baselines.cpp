@@ -1,5 +1,6 @@
 #include "integrators/families/baselines/baselines.hpp"
 
+#include "integrators/controllers/controller.hpp"
 #include "integrators/steppers/stepped_method.hpp"
 #include "problems/so3.hpp"
 
@@ -28,14 +29,14 @@ Mat3 rotation_of_quaternion(const Eigen::Vector4d& q) {
 // R pulled back onto SO(3) after each RK4 step of the flat view
 struct ProjectedStep {
   const Problem& problem;
-  Projection projection;
+  RotationFix fix;  // project_newton_schulz or project_svd
   void operator()(FlatState& y, double /*t*/, double h, Cost& cost) const {
     rk4_step(y, h, [&](const FlatState& x, FlatState& dx) { stage_flat_rhs(problem, x.data(), dx.data(), cost); });
     cost.rhs_evals += 4;
     // a non-finite R has no closest rotation; the driver reports it diverged
     if (!y.allFinite()) return;
     const Mat3 R = rotation_of(y);
-    set_rotation(y, projection == Projection::svd ? project_to_so3(R) : project_to_so3_newton_schulz(R));
+    set_rotation(y, fix == RotationFix::project_svd ? project_to_so3(R) : project_to_so3_newton_schulz(R));
   }
 };
 
@@ -78,30 +79,30 @@ struct QuaternionStep {
 
 }  // namespace
 
-std::unique_ptr<Integrator> rk4_projected(std::string name, Projection projection) {
+std::unique_ptr<Integrator> rk4_baseline(RotationFix fix, std::string name, const std::string& controller) {
+  require_controller(controller, {kConstantController}, name, "a fixed-step baseline");
+  if (fix == RotationFix::unit_quaternion) {
+    MethodInfo info{.name = std::move(name),
+                    .family = "quaternion",
+                    .declared_order = 4,
+                    .controller = controller,
+                    .description =
+                        "classical RK4 on (q, z), a unit quaternion for R with q' = (0, omega) (x) q / 2, "
+                        "normalised after every step: 4 rhs and one normalisation a step"};
+    return stepped_method(std::move(info), [](const Problem& problem) { return QuaternionStep(problem); });
+  }
   MethodInfo info{.name = std::move(name),
                   .family = "projection",
                   .declared_order = 4,
-                  .description = projection == Projection::svd
+                  .controller = controller,
+                  .description = fix == RotationFix::project_svd
                                      ? "classical RK4 on the flat view with R projected onto SO(3) after every "
                                        "step (polar factor by a 3x3 SVD): 4 rhs and one SVD a step"
                                      : "classical RK4 on the flat view with R projected onto SO(3) after every "
                                        "step (polar factor by a Newton-Schulz step): 4 rhs and two 3x3 products "
                                        "a step",
                   .tableau = "rk4"};
-  return stepped_method(std::move(info), [projection](const Problem& problem) {
-    return ProjectedStep{problem, projection};
-  });
-}
-
-std::unique_ptr<Integrator> rk4_quaternion(std::string name) {
-  MethodInfo info{.name = std::move(name),
-                  .family = "quaternion",
-                  .declared_order = 4,
-                  .description =
-                      "classical RK4 on (q, z), a unit quaternion for R with q' = (0, omega) (x) q / 2, "
-                      "normalised after every step: 4 rhs and one normalisation a step"};
-  return stepped_method(std::move(info), [](const Problem& problem) { return QuaternionStep(problem); });
+  return stepped_method(std::move(info), [fix](const Problem& problem) { return ProjectedStep{problem, fix}; });
 }
 
 }  // namespace rb

@@ -1,5 +1,6 @@
 #include "integrators/families/discrete_gradient/discrete_gradient.hpp"
 
+#include "integrators/controllers/controller.hpp"
 #include "integrators/steppers/newton.hpp"
 #include "integrators/steppers/stepped_method.hpp"
 #include "problems/energy.hpp"
@@ -69,11 +70,14 @@ struct DiscreteGradientStep {
 
 }  // namespace
 
-std::unique_ptr<Integrator> discrete_gradient_method() {
-  MethodInfo info{.name = "dg2",
+std::unique_ptr<Integrator> discrete_gradient_method(DiscreteGradient /*gradient: gonzalez_midpoint*/, std::string name,
+                                                     const std::string& controller) {
+  require_controller(controller, {kConstantController}, name, "the discrete-gradient method");
+  MethodInfo info{.name = std::move(name),
                   .family = "discrete-gradient",
                   .declared_order = 2,
                   .needs_jacobian = true,
+                  .controller = controller,
                   .description =
                       "discrete gradient (McLachlan-Quispel-Robidoux skew form, Gonzalez's midpoint "
                       "discrete gradient) on the flat view: energy conserved to rounding, symmetric; "

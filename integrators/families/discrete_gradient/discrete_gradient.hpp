@@ -9,11 +9,20 @@
 // up to the solve and rounding; it is symmetric and of order 2. Solved by
 // newton.hpp with gauss2's matrix I - h/2 J(y0).
 #include <memory>
+#include <string>
 
 #include "integrators/integrator.hpp"
 
 namespace rb {
 
-std::unique_ptr<Integrator> discrete_gradient_method();
+// Which discrete gradient the method uses: the method data of its registry
+// line. Gonzalez's midpoint discrete gradient (above) is the one there is.
+enum class DiscreteGradient { gonzalez_midpoint };
+
+// The discrete-gradient method (family "discrete-gradient"), called name;
+// fixed steps only: InputError (key "controller") for any controller but
+// "constant".
+std::unique_ptr<Integrator> discrete_gradient_method(DiscreteGradient gradient, std::string name,
+                                                     const std::string& controller);
 
 }  // namespace rb

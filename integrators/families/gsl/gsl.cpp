@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "integrators/adaptive_loops.hpp"
+#include "integrators/controllers/controller.hpp"
 #include "integrators/driver.hpp"
 #include "problems/input_error.hpp"
 #include "problems/jacobian.hpp"
@@ -22,8 +23,8 @@ namespace rb {
 namespace {
 
 // What the suite knows about each GSL stepper: GSL's name and type, and its
-// facts (the registry name, family and drive are added per drive by
-// facts_of). The declared order is that of the solution GSL propagates
+// facts (the registry name, the family, the controller and the drive it
+// asks for are added from the registry line by facts_of). The declared order is that of the solution GSL propagates
 // (measured by the registry's order test); needs_jacobian: modified Newton
 // (or BDF/extrapolation) with the Jacobian; variable_order: only meaningful
 // with a tolerance, so adaptive only.
@@ -220,14 +221,24 @@ void gsl_errors_off() {
 
 namespace {
 
-// The stepper's facts for a drive: "gsl-rk4" for a fixed step,
-// "gsl-rk4-adaptive" for the adaptive drive.
-MethodInfo facts_of(const GslStepper& s, GslDrive drive) {
-  const bool adaptive = drive == GslDrive::adaptive;
+// The drive a registry line's controller asks for: "constant" a fixed
+// step (not for a variable-order stepper), "library" the adaptive one.
+GslDrive drive_of(const GslStepper& s, const std::string& name, const std::string& controller) {
+  const std::string way = std::string("GSL's ") + s.name;
+  if (s.variable_order)
+    require_controller(controller, {kLibraryController}, name, way + " (variable order: adaptive only)");
+  else require_controller(controller, {kConstantController, kLibraryController}, name, way);
+  return controller == kConstantController ? GslDrive::fixed_step : GslDrive::adaptive;
+}
+
+// The stepper's facts, called name, for the drive its controller asks for.
+MethodInfo facts_of(const GslStepper& s, std::string name, const std::string& controller) {
+  const bool adaptive = drive_of(s, name, controller) == GslDrive::adaptive;
   MethodInfo facts = s.facts;
-  facts.name = std::string("gsl-") + s.name + (adaptive ? "-adaptive" : "");
+  facts.name = std::move(name);
   facts.family = "gsl";
   facts.adaptive = adaptive;
+  facts.controller = controller;
   facts.description = std::string("GSL odeiv2 ") + s.name + ": " + s.facts.description +
                       (adaptive ? "; adaptive (evolve + standard control on y, rtol/atol)"
                                 : "; fixed step (gsl_odeiv2_step_apply per step)");
@@ -236,15 +247,14 @@ MethodInfo facts_of(const GslStepper& s, GslDrive drive) {
 
 }  // namespace
 
-GslIntegrator::GslIntegrator(const std::string& stepper, GslDrive drive)
-    : GslIntegrator(find_stepper(stepper), drive) {}
+GslIntegrator::GslIntegrator(const std::string& stepper, std::string name, const std::string& controller)
+    : GslIntegrator(find_stepper(stepper), std::move(name), controller) {}
 
-GslIntegrator::GslIntegrator(int index, GslDrive drive)
-    : Integrator(facts_of(kSteppers[index], drive)), index_(index), drive_(drive) {
+GslIntegrator::GslIntegrator(int index, std::string name, const std::string& controller)
+    : Integrator(facts_of(kSteppers[index], std::move(name), controller)),
+      index_(index),
+      drive_(adaptive() ? GslDrive::adaptive : GslDrive::fixed_step) {
   gsl_errors_off();
-  if (drive == GslDrive::fixed_step && kSteppers[index_].variable_order)
-    throw InputError(std::string("GSL ") + kSteppers[index_].name + " has a variable order: it runs adaptive only",
-                     "integrator");
 }
 
 namespace {

@@ -5,17 +5,19 @@
 // (problems/jacobian.hpp).
 //
 // Two ways to drive a stepper:
-// - fixed step: one gsl_odeiv2_step_apply per step of drive_fixed_step (the
-//   shared loop: uniform steps landing on the outputs, per-step checks, step
-//   budget). GSL's error estimate is computed but not used.
-// - adaptive: one gsl_odeiv2_evolve_apply per accepted step with the
-//   standard control (rtol, atol on y), t1 = the next output time so the
-//   outputs are hit exactly.
+// - fixed step (controller "constant"): one gsl_odeiv2_step_apply per
+//   step of drive_fixed_step (the shared loop: uniform steps landing on the
+//   outputs, per-step checks, step budget). GSL's error estimate is
+//   computed but not used.
+// - adaptive (controller "library", GSL's own): one gsl_odeiv2_evolve_apply
+//   per accepted step with the standard control (rtol, atol on y), t1 = the
+//   next output time so the outputs are hit exactly.
 //
 // Every run allocates its GSL objects once and frees them on every path;
 // the counters live in the run, so one instance serves many threads.
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "integrators/integrator.hpp"
 
@@ -25,15 +27,18 @@ enum class GslDrive { fixed_step, adaptive };
 
 class GslIntegrator final : public Integrator {
  public:
-  // stepper: GSL's name ("rk4", "rkf45", "msbdf", ...). Throws InputError
-  // (key "integrator") for a stepper GSL does not have, or a variable-order
-  // one (bsimp, msadams, msbdf) asked to run with a fixed step.
-  // Its name is "gsl-rk4" for a fixed step, "gsl-rk4-adaptive" for the
-  // adaptive drive. Its declared order is that of the solution GSL
-  // propagates, which is not always the one gsl_odeiv2_step_order reports:
-  // rk2 advances with its 3rd-order member; variable-order methods declare
-  // their highest order.
-  GslIntegrator(const std::string& stepper, GslDrive drive);
+  // stepper: GSL's name ("rk4", "rkf45", "msbdf", ...), the method data of
+  // its registry line; name: its registry name ("gsl-rk4", by custom
+  // "gsl-rk4-adaptive" for the adaptive drive); controller: "constant" for
+  // the fixed-step drive, "library" for the adaptive one (GSL's standard
+  // control). Throws InputError (key "integrator") for a stepper GSL does
+  // not have, and (key "controller") for any other controller, or for
+  // "constant" with a variable-order one (bsimp, msadams, msbdf: adaptive
+  // only). Its declared order is that of the solution GSL propagates, which
+  // is not always the one gsl_odeiv2_step_order reports: rk2 advances with
+  // its 3rd-order member; variable-order methods declare their highest
+  // order.
+  GslIntegrator(const std::string& stepper, std::string name, const std::string& controller);
 
   // Fixed step: options.h > 0 is the step; rtol/atol, when given, set the
   // Newton tolerance of the implicit steppers (default 1e-13). Adaptive:
@@ -41,15 +46,17 @@ class GslIntegrator final : public Integrator {
   RunResult integrate(const Problem& problem, const RunOptions& options) const override;
 
  private:
-  GslIntegrator(int index, GslDrive drive);
+  GslIntegrator(int index, std::string name, const std::string& controller);
   int index_;  // into the stepper table in gsl.cpp
   GslDrive drive_;
 };
 
-// The registry's shape of GslIntegrator: GSL stays an adapter (its own
-// driver inside integrate), its line reads as every other method's.
-inline std::unique_ptr<Integrator> gsl_method(const std::string& stepper, GslDrive drive) {
-  return std::make_unique<GslIntegrator>(stepper, drive);
+// The registry's shape of GslIntegrator, gsl_method(stepper, name,
+// controller): GSL stays an adapter (its own driver inside integrate), its
+// line reads as every other method's.
+inline std::unique_ptr<Integrator> gsl_method(const std::string& stepper, std::string name,
+                                              const std::string& controller) {
+  return std::make_unique<GslIntegrator>(stepper, std::move(name), controller);
 }
 
 // GSL's default error handler aborts the process. This switches it off

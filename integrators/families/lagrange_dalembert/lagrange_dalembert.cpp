@@ -2,6 +2,7 @@
 
 #include <unsupported/Eigen/AutoDiff>
 
+#include "integrators/controllers/controller.hpp"
 #include "integrators/steppers/newton.hpp"
 #include "integrators/steppers/stepped_method.hpp"
 #include "problems/cayley.hpp"
@@ -157,11 +158,14 @@ struct LagrangeDalembertStep {
 
 }  // namespace
 
-std::unique_ptr<Integrator> lagrange_dalembert_method() {
-  MethodInfo info{.name = "dla2",
+std::unique_ptr<Integrator> lagrange_dalembert_method(DiscreteConstraint /*constraint: trapezoidal*/, std::string name,
+                                                      const std::string& controller) {
+  require_controller(controller, {kConstantController}, name, "the discrete Lagrange-d'Alembert method");
+  MethodInfo info{.name = std::move(name),
                   .family = "nonholonomic-variational",
                   .declared_order = 2,
                   .needs_jacobian = true,
+                  .controller = controller,
                   .description =
                       "discrete Lagrange-d'Alembert on SO(3) x R^2 (nodal variations in the rolling distribution, "
                       "trapezoidal discrete constraint; McLachlan-Perlmutter 2006): symmetric, R by Cayley steps; "

@@ -17,11 +17,20 @@
 // Solved by newton.hpp with the Jacobian of the 5 residuals by forward-mode
 // AD at an explicit predictor.
 #include <memory>
+#include <string>
 
 #include "integrators/integrator.hpp"
 
 namespace rb {
 
-std::unique_ptr<Integrator> lagrange_dalembert_method();
+// How the rolling constraint is imposed on a step: the method data of its
+// registry line. The trapezoidal rule (above) is the one there is.
+enum class DiscreteConstraint { trapezoidal };
+
+// The discrete Lagrange-d'Alembert method (family
+// "nonholonomic-variational"), called name; fixed steps only: InputError
+// (key "controller") for any controller but "constant".
+std::unique_ptr<Integrator> lagrange_dalembert_method(DiscreteConstraint constraint, std::string name,
+                                                      const std::string& controller);
 
 }  // namespace rb

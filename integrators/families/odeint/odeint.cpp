@@ -11,9 +11,11 @@
 #include <boost/numeric/odeint/stepper/runge_kutta_fehlberg78.hpp>
 #include <boost/numeric/odeint/util/odeint_error.hpp>
 #include <cmath>
+#include <stdexcept>
 #include <type_traits>
 
 #include "integrators/adaptive_loops.hpp"
+#include "integrators/controllers/controller.hpp"
 #include "integrators/driver.hpp"
 #include "integrators/steppers/stepped_method.hpp"
 
@@ -82,15 +84,6 @@ struct OdeintAbmStep {
     store(x, next);
   }
 };
-
-// A fixed-step odeint method: its facts (family "odeint") and its stepper,
-// made an integrator by stepped_method like every fixed-step method.
-template <class Step>
-std::unique_ptr<Integrator> odeint_fixed(std::string name, int order, std::string description,
-                                         std::string tableau = {}) {
-  return stepped_method(odeint_facts(std::move(name), order, std::move(description), false, std::move(tableau)),
-                        [](const Problem& problem) { return Step(problem); });
-}
 
 // ---- adaptive ----
 
@@ -218,8 +211,7 @@ class DenseDopri5 {
 template <class Stepper>
 class OdeintAdaptive final : public Integrator {
  public:
-  OdeintAdaptive(std::string name, int order, std::string description, std::string tableau = {})
-      : Integrator(odeint_facts(std::move(name), order, std::move(description), true, std::move(tableau))) {}
+  explicit OdeintAdaptive(MethodInfo info) : Integrator(std::move(info)) {}
   RunResult integrate(const Problem& problem, const RunOptions& options) const override {
     Stepper stepper(problem, options.tolerances);
     return drive_own_controller(problem, options, declared_order(), stepper);
@@ -229,63 +221,95 @@ class OdeintAdaptive final : public Integrator {
 template <class Rk>
 using Controlled = ControlledStepper<ode::controlled_runge_kutta<Rk>>;
 
+// ---- the steppers, by OdeintStepper ----
+
+using MakeIntegrator = std::unique_ptr<Integrator> (*)(MethodInfo);
+
+// A fixed-step stepper made an integrator by stepped_method, like every
+// fixed-step method.
+template <class Step>
+std::unique_ptr<Integrator> fixed_with(MethodInfo info) {
+  return stepped_method(std::move(info), [](const Problem& problem) { return Step(problem); });
+}
+
+template <class Stepper>
+std::unique_ptr<Integrator> adaptive_with(MethodInfo info) {
+  return std::make_unique<OdeintAdaptive<Stepper>>(std::move(info));
+}
+
+// What the suite knows of each odeint stepper: odeint's name, the declared
+// order (that of the solution it advances with; extrapolation has no single
+// order, 8 is what it is declared and guesses its first step with), the
+// registry's name of its Butcher tableau where a Lie-group method shares it
+// (MethodInfo::tableau), and per drive the description and the integrator,
+// nullptr where it has no such drive (no error estimate: fixed steps only;
+// extrapolation: adaptive only).
+struct OdeintKind {
+  OdeintStepper stepper;
+  const char* odeint_name;
+  int order;
+  const char* tableau;
+  const char* fixed_description;
+  MakeIntegrator fixed;
+  const char* adaptive_description;
+  MakeIntegrator adaptive;
+};
+
+// clang-format off
+const OdeintKind kKinds[] = {
+  {OdeintStepper::euler, "euler", 1, "euler",
+   "Boost.Odeint euler (explicit Euler) on the flat view",
+   fixed_with<OdeintStep<ode::euler<OdeintState>>>, nullptr, nullptr},
+  {OdeintStepper::rk4, "runge_kutta4", 4, "rk4",
+   "Boost.Odeint runge_kutta4 (classic RK4, 4 evaluations a step) on the flat view",
+   fixed_with<OdeintStep<ode::runge_kutta4<OdeintState>>>, nullptr, nullptr},
+  {OdeintStepper::cash_karp54, "runge_kutta_cash_karp54", 5, "",
+   "Boost.Odeint runge_kutta_cash_karp54 at fixed step (5th-order solution)",
+   fixed_with<OdeintStep<ode::runge_kutta_cash_karp54<OdeintState>>>,
+   "Boost.Odeint controlled runge_kutta_cash_karp54",
+   adaptive_with<Controlled<ode::runge_kutta_cash_karp54<OdeintState>>>},
+  {OdeintStepper::dopri5, "runge_kutta_dopri5", 5, "dp54",
+   "Boost.Odeint runge_kutta_dopri5 at fixed step (5th order, FSAL)",
+   fixed_with<OdeintStep<ode::runge_kutta_dopri5<OdeintState>>>,
+   "Boost.Odeint controlled runge_kutta_dopri5 with dense output",
+   adaptive_with<DenseDopri5>},
+  {OdeintStepper::fehlberg78, "runge_kutta_fehlberg78", 8, "f78",
+   "Boost.Odeint runge_kutta_fehlberg78 at fixed step (8th-order solution)",
+   fixed_with<OdeintStep<ode::runge_kutta_fehlberg78<OdeintState>>>,
+   "Boost.Odeint controlled runge_kutta_fehlberg78",
+   adaptive_with<Controlled<ode::runge_kutta_fehlberg78<OdeintState>>>},
+  {OdeintStepper::abm4, "adams_bashforth_moulton<4>", 4, "",
+   "Boost.Odeint adams_bashforth_moulton<4> (PECE), started with runge_kutta4",
+   fixed_with<OdeintAbmStep<4>>, nullptr, nullptr},
+  {OdeintStepper::abm5, "adams_bashforth_moulton<5>", 5, "",
+   "Boost.Odeint adams_bashforth_moulton<5> (PECE), started with runge_kutta4",
+   fixed_with<OdeintAbmStep<5>>, nullptr, nullptr},
+  {OdeintStepper::bulirsch_stoer, "bulirsch_stoer", 8, "",
+   nullptr, nullptr,
+   "Boost.Odeint bulirsch_stoer (controlled extrapolation, variable order)",
+   adaptive_with<ControlledStepper<BulirschStoer>>},
+};
+// clang-format on
+
+const OdeintKind& kind_of(OdeintStepper stepper) {
+  for (const OdeintKind& kind : kKinds)
+    if (kind.stepper == stepper) return kind;
+  throw std::logic_error("odeint: a stepper with no row in kKinds");
+}
+
 }  // namespace
 
-std::unique_ptr<Integrator> odeint_euler() {
-  return odeint_fixed<OdeintStep<ode::euler<OdeintState>>>(
-      "odeint-euler", 1, "Boost.Odeint euler (explicit Euler) on the flat view", "euler");
-}
-
-std::unique_ptr<Integrator> odeint_rk4() {
-  return odeint_fixed<OdeintStep<ode::runge_kutta4<OdeintState>>>(
-      "odeint-rk4", 4, "Boost.Odeint runge_kutta4 (classic RK4, 4 evaluations a step) on the flat view", "rk4");
-}
-
-std::unique_ptr<Integrator> odeint_cash_karp54() {
-  return odeint_fixed<OdeintStep<ode::runge_kutta_cash_karp54<OdeintState>>>(
-      "odeint-cash-karp54", 5, "Boost.Odeint runge_kutta_cash_karp54 at fixed step (5th-order solution)");
-}
-
-std::unique_ptr<Integrator> odeint_dopri5() {
-  return odeint_fixed<OdeintStep<ode::runge_kutta_dopri5<OdeintState>>>(
-      "odeint-dopri5", 5, "Boost.Odeint runge_kutta_dopri5 at fixed step (5th order, FSAL)", "dp54");
-}
-
-std::unique_ptr<Integrator> odeint_fehlberg78() {
-  return odeint_fixed<OdeintStep<ode::runge_kutta_fehlberg78<OdeintState>>>(
-      "odeint-fehlberg78", 8, "Boost.Odeint runge_kutta_fehlberg78 at fixed step (8th-order solution)", "f78");
-}
-
-std::unique_ptr<Integrator> odeint_abm4() {
-  return odeint_fixed<OdeintAbmStep<4>>("odeint-abm4", 4,
-                                        "Boost.Odeint adams_bashforth_moulton<4> (PECE), started with runge_kutta4");
-}
-
-std::unique_ptr<Integrator> odeint_abm5() {
-  return odeint_fixed<OdeintAbmStep<5>>("odeint-abm5", 5,
-                                        "Boost.Odeint adams_bashforth_moulton<5> (PECE), started with runge_kutta4");
-}
-
-std::unique_ptr<Integrator> odeint_dopri5_adaptive() {
-  return std::make_unique<OdeintAdaptive<DenseDopri5>>(
-      "odeint-dopri5-adaptive", 5, "Boost.Odeint controlled runge_kutta_dopri5 with dense output", "dp54");
-}
-
-std::unique_ptr<Integrator> odeint_cash_karp54_adaptive() {
-  return std::make_unique<OdeintAdaptive<Controlled<ode::runge_kutta_cash_karp54<OdeintState>>>>(
-      "odeint-cash-karp54-adaptive", 5, "Boost.Odeint controlled runge_kutta_cash_karp54");
-}
-
-std::unique_ptr<Integrator> odeint_fehlberg78_adaptive() {
-  return std::make_unique<OdeintAdaptive<Controlled<ode::runge_kutta_fehlberg78<OdeintState>>>>(
-      "odeint-fehlberg78-adaptive", 8, "Boost.Odeint controlled runge_kutta_fehlberg78", "f78");
-}
-
-// Extrapolation has no single order; 8 is what it is declared (and guesses
-// its first step) with.
-std::unique_ptr<Integrator> odeint_bulirsch_stoer() {
-  return std::make_unique<OdeintAdaptive<ControlledStepper<BulirschStoer>>>(
-      "odeint-bulirsch-stoer", 8, "Boost.Odeint bulirsch_stoer (controlled extrapolation, variable order)");
+std::unique_ptr<Integrator> odeint_method(OdeintStepper stepper, std::string name, const std::string& controller) {
+  const OdeintKind& kind = kind_of(stepper);
+  const std::string way = std::string("odeint's ") + kind.odeint_name;
+  if (!kind.adaptive) require_controller(controller, {kConstantController}, name, way + " (no error estimate)");
+  else if (!kind.fixed) require_controller(controller, {kLibraryController}, name, way + " (adaptive only)");
+  else require_controller(controller, {kConstantController, kLibraryController}, name, way);
+  const bool adaptive = controller == kLibraryController;
+  MethodInfo info = odeint_facts(std::move(name), kind.order,
+                                 adaptive ? kind.adaptive_description : kind.fixed_description, adaptive, kind.tableau);
+  info.controller = controller;
+  return adaptive ? kind.adaptive(std::move(info)) : kind.fixed(std::move(info));
 }
 
 }  // namespace rb

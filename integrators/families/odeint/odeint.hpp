@@ -5,10 +5,11 @@
 // Problem::flat_rhs and counts its evaluations in a counter owned by the run.
 //
 // Fixed-step ones run in drive_fixed_step, adaptive ones in drive_own_controller
-// (integrators/driver.hpp, adaptive_loops.hpp). Adding a stepper is one factory here and one
-// registry line.
+// (integrators/driver.hpp, adaptive_loops.hpp). Adding a stepper is one
+// OdeintStepper, one row of odeint.cpp's table and one registry line.
 #include <array>
 #include <memory>
+#include <string>
 
 #include "integrators/integrator.hpp"
 
@@ -30,26 +31,32 @@ struct OdeintSystem {
   }
 };
 
-// Fixed step, through drive_fixed_step. The declared order is that of the
-// solution do_step returns: odeint's embedded pairs advance with the higher
-// order one (cash-karp54 and dopri5: 5, fehlberg78: 8).
-std::unique_ptr<Integrator> odeint_euler();        // "odeint-euler", order 1
-std::unique_ptr<Integrator> odeint_rk4();          // "odeint-rk4", order 4
-std::unique_ptr<Integrator> odeint_cash_karp54();  // "odeint-cash-karp54", order 5
-std::unique_ptr<Integrator> odeint_dopri5();       // "odeint-dopri5", order 5 (FSAL: 6 evaluations a step)
-std::unique_ptr<Integrator> odeint_fehlberg78();   // "odeint-fehlberg78", order 8
-// Adams-Bashforth-Moulton (PECE, 2 evaluations a step) with Steps steps,
-// started with odeint's runge_kutta4 steps and restarted whenever
-// drive_fixed_step changes h: "odeint-abm4" (order 4), "odeint-abm5" (5).
-std::unique_ptr<Integrator> odeint_abm4();
-std::unique_ptr<Integrator> odeint_abm5();
+// odeint's steppers: the method data of a registry line. Each runs at fixed
+// steps (controller "constant": drive_fixed_step, one do_step a step) and,
+// where it estimates its error, with odeint's own controller ("library":
+// drive_own_controller, driven by RunOptions::tolerances with odeint's
+// error norm, the largest |err_i| / (atol + rtol (|x_i| + h |dxdt_i|)); h is
+// the first step tried, 0 chooses one). The declared order is that of the
+// solution the stepper advances with: odeint's embedded pairs advance with
+// the higher order one (cash_karp54 and dopri5: 5, fehlberg78: 8).
+enum class OdeintStepper {
+  euler,        // euler: fixed steps only, order 1
+  rk4,          // runge_kutta4: fixed steps only, order 4
+  cash_karp54,  // runge_kutta_cash_karp54, order 5; adaptive: controlled
+  dopri5,       // runge_kutta_dopri5, order 5 (FSAL: 6 evaluations a step); adaptive: dense output
+  fehlberg78,   // runge_kutta_fehlberg78, order 8; adaptive: controlled
+  // Adams-Bashforth-Moulton (PECE, 2 evaluations a step), started with
+  // odeint's runge_kutta4 steps and restarted whenever drive_fixed_step
+  // changes h: fixed steps only
+  abm4,            // adams_bashforth_moulton<4>, order 4
+  abm5,            // adams_bashforth_moulton<5>, order 5
+  bulirsch_stoer,  // bulirsch_stoer (controlled extrapolation): adaptive only, declared order 8
+};
 
-// Adaptive, driven by RunOptions::rtol and atol (odeint's error norm: the
-// largest |err_i| / (atol + rtol (|x_i| + h |dxdt_i|))); h is the first step
-// tried, 0 chooses one.
-std::unique_ptr<Integrator> odeint_dopri5_adaptive();       // "odeint-dopri5-adaptive": dense output
-std::unique_ptr<Integrator> odeint_cash_karp54_adaptive();  // "odeint-cash-karp54-adaptive": controlled
-std::unique_ptr<Integrator> odeint_fehlberg78_adaptive();   // "odeint-fehlberg78-adaptive": controlled
-std::unique_ptr<Integrator> odeint_bulirsch_stoer();        // "odeint-bulirsch-stoer": controlled
+// The stepper at fixed steps (controller kConstantController) or with
+// odeint's own controller (kLibraryController), called name (family
+// "odeint"). InputError (key "controller") for any other controller, and for
+// a drive the stepper has not (above).
+std::unique_ptr<Integrator> odeint_method(OdeintStepper stepper, std::string name, const std::string& controller);
 
 }  // namespace rb
