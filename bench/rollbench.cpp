@@ -86,10 +86,10 @@ int run_trajectory(const TrajectoryArgs& a) {
     throw rb::InputError("the output spacing must be a finite number > 0", "dt-out");
   if (!integrator.adaptive() && !std::isfinite(a.h)) throw rb::InputError("the step must be a finite number > 0", "h");
   options.t_end = std::isnan(a.t_end) ? problem.t_end() : a.t_end;
-  options.h = a.h;
-  if (!a.controller.empty()) options.controller = &rb::filter_controller(a.controller);  // refuses unknown names
   if (!integrator.adaptive() && !(a.h > 0.0))
     throw rb::InputError("'" + integrator.name() + "' is a fixed-step method and needs --h > 0", "h");
+  options.h = a.h;
+  if (!a.controller.empty()) options.controller = &rb::filter_controller(a.controller);  // refuses unknown names
   // the tolerances, checked before a file is written: an adaptive method
   // needs them; a fixed-step one takes them when given (GSL's implicit
   // steppers' Newton tolerance)

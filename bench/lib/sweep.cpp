@@ -14,6 +14,7 @@
 #include "bench/lib/trajectory_csv.hpp"
 #include "integrators/driver.hpp"
 #include "integrators/registry.hpp"
+#include "integrators/step_size.hpp"
 #include "problems/input_error.hpp"
 #include "problems/so3.hpp"
 #include "problems/utf8.hpp"
@@ -236,6 +237,8 @@ std::vector<SweepTask> sweep_tasks(const SweepSpec& spec, const std::vector<Swee
   // each tolerance of the list checked once, as a run takes it
   std::vector<Tolerances> tolerances;
   for (const double tol : spec.tols) tolerances.emplace_back(tol, tol);
+  // and each step (StepSize: finite, >= 0; 0 is a fixed-step method's refusal, a run's status)
+  for (const double h : spec.hs) (void)StepSize(h);
   std::vector<SweepTask> all;
   for (std::size_t s = 0; s < scenes.size(); ++s)
     for (const std::string& m : methods) {

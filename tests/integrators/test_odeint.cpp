@@ -228,7 +228,7 @@ TEST(OdeintOptions, BadOptionsThrowInputError) {
   RunOptions none = adaptive(1e-8, 1.0);
   none.tolerances = {};  // no tolerance at all
   EXPECT_EQ(key_of(a, none), "rtol");
-  EXPECT_EQ(key_of(a, adaptive(1e-8, 1.0, -0.1)), "h");
+  EXPECT_THROW((void)adaptive(1e-8, 1.0, -0.1), InputError);  // a negative first step: refused where it is set
   RunOptions backwards = adaptive(1e-8, 1.0);
   backwards.output_times = {0.5, 0.2};
   EXPECT_EQ(key_of(a, backwards), "output_times");

@@ -5,6 +5,7 @@
 // run. The registry is read, never listed: a new family is tested as soon
 // as it registers.
 #include <cmath>
+#include <string>
 
 #include "bench/lib/report.hpp"
 #include "bench/lib/sweep.hpp"
@@ -188,7 +189,7 @@ TEST(FailingSweep, EveryRunIsRecordedAndNoneCrashes) {
   SweepSpec spec;
   for (const StopCase& c : kStopScenes) spec.scenes.push_back(std::string(RB_TEST_DATA) + "/" + c.file);
   spec.integrators = representatives();
-  spec.hs = {1e-2, -1.0};     // -1: an option the methods refuse
+  spec.hs = {1e-2, 0.0};      // 0: no step, which the fixed-step methods refuse
   spec.tols = {1e-6, 1e-18};  // 1e-18: below rounding
   spec.repeats = 1;
   spec.jobs = 2;
@@ -206,7 +207,7 @@ TEST(FailingSweep, EveryRunIsRecordedAndNoneCrashes) {
     EXPECT_NE(r.status, Status::ok);
     EXPECT_FALSE(r.message.empty());
     EXPECT_EQ(r.wall_samples.size(), 1u);
-    const Status want = r.h < 0 ? Status::error
+    const Status want = r.h == 0.0 ? Status::error
                         : r.rtol == 1e-18
                             ? Status::step_underflow
                             : std::find_if(std::begin(kStopScenes), std::end(kStopScenes), [&](const StopCase& c) {
@@ -217,6 +218,16 @@ TEST(FailingSweep, EveryRunIsRecordedAndNoneCrashes) {
       EXPECT_GT(r.stop_time, 0.0);
     }
     EXPECT_TRUE(std::isnan(r.error.contact)) << "no error is measured for a stopped run";
+  }
+  // a step no method can take is the sweep's input error, as a bad tolerance is
+  SweepSpec negative = spec;
+  negative.hs = {1e-2, -1.0};
+  try {
+    (void)sweep_tasks(negative, scenes);
+    ADD_FAILURE() << "a sweep took h = -1";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "'h': the step h must be a finite number >= 0 (0: an adaptive method chooses its first step)");
   }
   // the report keeps every failed run with its status, message and stop time
   const nlohmann::json report = make_report(spec, scenes, runs, StabilityResults{});

@@ -176,8 +176,8 @@ TEST(Limits, NonFiniteOrNonPositiveStepsAndEndTimesAreInputErrors) {
     for (const double bad : {0.0, -1.0, kNaN, kInf}) {
       if (m->adaptive() && bad == 0.0) continue;  // h = 0: the method picks its first step
       o = options_for(*m, 1.0, 0.01, 1e-6, 0.5);
-      o.h = bad;
       try {
+        o.h = bad;  // a negative or non-finite step is refused here, where it is set (StepSize)
         m->integrate(p, o);
         ADD_FAILURE() << m->name() << " took h = " << bad;
       } catch (const InputError& e) {

@@ -6,7 +6,9 @@
 //   y_{n+1} = y_n + h F(y_n + h/2 F(y_n)),
 // written by hand (not from a tableau) to show the whole interface.
 #include <memory>
+#include <string>
 
+#include "integrators/controllers/controller.hpp"
 #include "integrators/steppers/stepped_method.hpp"
 
 namespace rb {
@@ -27,9 +29,12 @@ struct MidpointStep {
   }
 };
 
-inline std::unique_ptr<Integrator> explicit_midpoint() {
+// The registry line's shape with no data (the rule is the data):
+// explicit_midpoint("midpoint", kConstantController); fixed steps only.
+inline std::unique_ptr<Integrator> explicit_midpoint(std::string name, const std::string& controller) {
+  require_controller(controller, {kConstantController}, name, "the explicit midpoint rule");
   return stepped_method(
-      {.name = "midpoint",
+      {.name = std::move(name),
        .family = "rk",
        .declared_order = 2,
        .description = "explicit midpoint rule on the flat view (the worked example of docs/extending.md)"},

@@ -27,7 +27,7 @@ void register_rk(MethodList& list) {
   list.push_back(rk_method(m::kutta3(), "rk3", constant));
   list.push_back(rk_method(m::rk4(), "rk4", constant));
   list.push_back(rk_method(m::rk38(), "rk38", constant));
-  list.push_back(explicit_midpoint());  // docs/extending.md's worked example
+  list.push_back(explicit_midpoint("midpoint", constant));  // docs/extending.md's worked example
   // the flat twins of the RKMK pairs: the same embedded pair, PI controller
   // and RMS error norm, on the flat view (dp853's stretched estimate has no
   // flat twin)
