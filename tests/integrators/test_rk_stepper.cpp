@@ -21,24 +21,14 @@
 #include "integrators/tableau_file.hpp"
 #include "integrators/user_tableaux.hpp"
 #include "tests/integrators/fixtures.hpp"
+#include "tests/integrators/heun_euler.hpp"
 
 namespace rb {
 namespace {
 
 using testing::valley;
 
-// Heun's method with Euler embedded: 2 stages, e = b - b_hat = (-1/2, 1/2).
-Tableau heun_euler() {
-  TableauCoefficients k;
-  k.name = "heun-euler";
-  k.order = 2;
-  k.a = {0, 0, 1, 0};
-  k.b = {0.5, 0.5};
-  k.c = {0, 1};
-  k.e = {-0.5, 0.5};
-  k.embedded_order = 1;
-  return Tableau(std::move(k));
-}
+using testing::heun_euler;  // 2 stages, e = b - b_hat = (-1/2, 1/2)
 
 // The pairs of the registry and a 2-stage one (its propagating loop
 // unrolled, as bs32's 3 stages are; the others go generic).

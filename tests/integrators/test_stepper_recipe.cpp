@@ -10,6 +10,7 @@
 #include "integrators/registry.hpp"
 #include "integrators/steppers/stepped_method.hpp"
 #include "integrators/steppers/tableau_methods.hpp"
+#include "tests/integrators/heun_euler.hpp"
 
 namespace rb {
 namespace {
@@ -90,21 +91,10 @@ TEST(StepperRecipe, TheDriverStopsItOnTheBudget) {
   EXPECT_DOUBLE_EQ(run.stop_time, 0.07);
 }
 
-// The tableau half of the recipe: one Tableau (Heun with Euler embedded,
-// which no registry entry uses) and one line per integrator naming the
-// tableau, the way of stepping and the controller.
-Tableau heun_euler() {
-  TableauCoefficients k;
-  k.name = "heun-euler";
-  k.order = 2;
-  k.a = {0, 0, 1, 0};
-  k.b = {0.5, 0.5};
-  k.c = {0, 1};
-  k.e = {-0.5, 0.5};  // b - b_hat with b_hat = (1, 0), Euler
-  k.embedded_order = 1;
-  k.source = "Heun (1900), Euler embedded";
-  return Tableau(std::move(k));
-}
+// The tableau half of the recipe: one Tableau (heun_euler.hpp: Heun with
+// Euler embedded, which no registry entry uses) and one line per integrator
+// naming the tableau, the way of stepping and the controller.
+using testing::heun_euler;
 
 TEST(StepperRecipe, OneTableauAndOneLineEachGiveAFixedAndAnAdaptiveMethod) {
   static const bool added = [] {
