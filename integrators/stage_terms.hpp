@@ -11,7 +11,7 @@
 namespace rb {
 
 // A tableau's non-zero coefficients, gathered once per run so that the step
-// loops of the tableau steppers (rk_stepper.hpp, munthe_kaas.cpp) skip the
+// loops of the tableau steppers (rk_stepper.hpp, rkmk_stepper.hpp) skip the
 // zeros without testing them and read no std::vector in the step.
 struct StageTerms {
   struct Row {
@@ -124,14 +124,22 @@ struct StageTerms {
       }
     }
   };
-  int stages;
+  // A tableau's terms for every stage a step may evaluate: the rows of A up
+  // to total_stages() (the attempt's and the dense output's), b, and the
+  // error weights e and e_stretched (count 0 without them).
+  int stages;                     // propagating: a fixed step's
+  int attempt;                    // an adaptive attempt's (stages without an error estimate)
   std::array<Row, kMaxStages> a;  // row i: the terms of stage i
-  Row b;                          // the weights
+  Row b, e, e3;
 
-  explicit StageTerms(const Tableau& tableau) : stages(tableau.stages()) {
-    for (int i = 0; i < stages; ++i)
-      for (int j = 0; j < i; ++j) a[static_cast<std::size_t>(i)].add(j, tableau.a(i, j));
-    for (int j = 0; j < stages; ++j) b.add(j, tableau.b(j));
+  explicit StageTerms(const Tableau& tableau) : stages(tableau.stages()), attempt(tableau.attempt_stages()) {
+    const int total = tableau.total_stages();
+    for (int i = 0; i < total; ++i)
+      a[static_cast<std::size_t>(i)] = Row(&tableau.a_row_major()[static_cast<std::size_t>(i * total)], i);
+    // b_j = 0 past stages(): the same terms over either count
+    b = Row(tableau.b_weights().data(), stages);
+    if (!tableau.e().empty()) e = Row(tableau.e().data(), attempt);
+    if (!tableau.e_stretched().empty()) e3 = Row(tableau.e_stretched().data(), attempt);
   }
 };
 

@@ -31,7 +31,7 @@ bool same_bits(const FlatState& a, const FlatState& b) { return std::memcmp(a.da
 // n steps of h by the pair's attempts, each accepted: the state after each
 template <bool General>
 std::vector<FlatState> pair_steps(const Problem& p, const Tableau& tableau, double h, int n, Cost& cost) {
-  const RkmkTerms terms(tableau);
+  const StageTerms terms(tableau);
   RkmkStages stages;
   const std::vector<double> outputs;
   RkmkStepper<0, ExpCoordinates, false, General> pair(p, tableau, terms, ExpCoordinates{DexpinvKind::exact}, stages,

@@ -47,18 +47,7 @@ class RkStepper : public EmbeddedPair<RkStepper<S>> {
   // tol: the pair's tolerances (none at fixed steps). The problem and the
   // tableau must outlive the stepper.
   RkStepper(const Problem& problem, const Tableau& tableau, const Tolerances& tol = {})
-      : problem_(&problem),
-        tableau_(&tableau),
-        tol_(tol),
-        y_(problem.y0()),
-        stages_(tableau.stages()),
-        attempt_(tableau.has_error_estimate() ? tableau.attempt_stages() : tableau.stages()),
-        b_(tableau.b_weights().data(), stages_) {
-    for (int i = 1; i < attempt_; ++i)
-      a_[static_cast<std::size_t>(i)] =
-          StageTerms::Row(&tableau.a_row_major()[static_cast<std::size_t>(i * tableau.total_stages())], i);
-    if (tableau.has_error_estimate()) e_ = StageTerms::Row(tableau.e().data(), attempt_);
-  }
+      : problem_(&problem), tableau_(&tableau), tol_(tol), y_(problem.y0()), terms_(tableau) {}
 
   // One step of h from y into next; Estimate: also the error norm of the
   // step (its first stage k_0 = F(y) already evaluated), else 0. Every
@@ -66,10 +55,10 @@ class RkStepper : public EmbeddedPair<RkStepper<S>> {
   template <bool Estimate>
   [[gnu::always_inline]] double step(const FlatState& y, FlatState& next, double h, Cost& cost) {
     // Estimate: also the stages only the error weights use
-    const int stages = Estimate ? attempt_ : S > 0 ? S : stages_;
+    const int stages = Estimate ? terms_.attempt : S > 0 ? S : terms_.stages;
     if constexpr (!Estimate) stage_flat_rhs(*problem_, y.data(), k_[0].data(), cost);
     for (int i = 1; i < stages; ++i) {
-      const StageTerms::Row& row = a_[static_cast<std::size_t>(i)];
+      const StageTerms::Row& row = terms_.a[static_cast<std::size_t>(i)];
       // the stage's state, y + h a_i0 k_0 + h a_i1 k_1 + ... (the non-zero
       // terms); with none y itself, uncopied
       const FlatState* at = &y;
@@ -79,7 +68,7 @@ class RkStepper : public EmbeddedPair<RkStepper<S>> {
       }
       stage_flat_rhs(*problem_, at->data(), k_[static_cast<std::size_t>(i)].data(), cost);
     }
-    b_.sum(next, y, h, k_);
+    terms_.b.sum(next, y, h, k_);
     if constexpr (Estimate) {
       cost.rhs_evals += stages - 1;  // k_0 is first_stage's
       return error_norm(y, next, h);
@@ -119,7 +108,7 @@ class RkStepper : public EmbeddedPair<RkStepper<S>> {
   // Eigen's sums as calls (rk-dp54-adaptive 28 instructions a step more,
   // callgrind)
   [[gnu::noinline]] double error_norm(const FlatState& y, const FlatState& next, double h) {
-    e_.sum(error_, h, k_);
+    terms_.e.sum(error_, h, k_);
     return rms_error(scaled_squares(error_, value_scale(tol_, y, next)), kFlatSize);
   }
 
@@ -127,10 +116,7 @@ class RkStepper : public EmbeddedPair<RkStepper<S>> {
   const Tableau* tableau_;
   Tolerances tol_;
   FlatState y_, y_new_, Y_, error_;
-  int stages_;                                 // the stages b weights
-  int attempt_;                                // the stages of an attempt (stages_ without an error estimate)
-  std::array<StageTerms::Row, kMaxStages> a_;  // A's rows, each stage's terms
-  StageTerms::Row b_, e_;
+  StageTerms terms_;
   std::array<FlatState, kMaxStages> k_;
 };
 

@@ -64,7 +64,7 @@ struct PairRun {
 template <bool Estimating, class Coordinates, class Use>
 RunResult with_rkmk_stepper(const Problem& problem, const Tableau& tableau, Coordinates map, const PairRun* pair,
                             Use&& use) {
-  const RkmkTerms terms(tableau);
+  const StageTerms terms(tableau);
   RkmkStages stages;
   if constexpr (!Estimating) {
     auto fixed = [&]<int S>() {

@@ -80,26 +80,6 @@ struct CayleyCoordinates {
   void check_chart(const Vec3& /*u*/) const {}  // dcayinv has no pole
 };
 
-// A tableau's non-zero terms for every stage an RKMK step may evaluate: the
-// rows of A up to total_stages() (the attempt's and the dense output's),
-// b, and the error weights e and e_stretched (count 0 without them).
-struct RkmkTerms {
-  int stages;   // propagating: a fixed step's
-  int attempt;  // an adaptive attempt's
-  std::array<StageTerms::Row, kMaxStages> a;
-  StageTerms::Row b, e, e3;
-
-  explicit RkmkTerms(const Tableau& tableau) : stages(tableau.stages()), attempt(tableau.attempt_stages()) {
-    const int total = tableau.total_stages();
-    for (int i = 0; i < total; ++i)
-      a[static_cast<std::size_t>(i)] = StageTerms::Row(&tableau.a_row_major()[static_cast<std::size_t>(i * total)], i);
-    // b_j = 0 past stages(): the same terms over either count
-    b = StageTerms::Row(tableau.b_weights().data(), stages);
-    if (!tableau.e().empty()) e = StageTerms::Row(tableau.e().data(), attempt);
-    if (!tableau.e_stretched().empty()) e3 = StageTerms::Row(tableau.e_stretched().data(), attempt);
-  }
-};
-
 // The stages' derivatives, held in the frame that makes the stepper so that
 // a step allocates nothing.
 struct RkmkStages {
@@ -118,7 +98,7 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
   static constexpr bool dense_output = Dense;
 
   // For fixed steps.
-  RkmkStepper(const Problem& problem, const Tableau& tableau, const RkmkTerms& terms, Coordinates map,
+  RkmkStepper(const Problem& problem, const Tableau& tableau, const StageTerms& terms, Coordinates map,
               RkmkStages& stages)
       : problem_(problem),
         tableau_(tableau),
@@ -132,7 +112,7 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
 
   // For the embedded pair: from the problem's start, with the run's
   // tolerances and output times.
-  RkmkStepper(const Problem& problem, const Tableau& tableau, const RkmkTerms& terms, Coordinates map,
+  RkmkStepper(const Problem& problem, const Tableau& tableau, const StageTerms& terms, Coordinates map,
               RkmkStages& stages, const Tolerances& tol, const std::vector<double>& outputs)
       : RkmkStepper(problem, tableau, terms, map, stages) {
     tol_ = tol;
@@ -391,7 +371,7 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
 
   const Problem& problem_;
   const Tableau& tableau_;
-  const RkmkTerms& terms_;
+  const StageTerms& terms_;
   Coordinates map_;
   bool anisotropic_;  // stage orientations needed
   std::array<Vec3, kMaxStages>& K_;
