@@ -134,12 +134,12 @@ template <bool WatchNear = true>
 }
 // The same on the model's code path General (RollingBall::has_inertia()),
 // fixed at compile time by a stepper that chose it once per run.
-template <bool General>
+template <bool General, bool WatchNear = true>
 [[gnu::always_inline]] inline void stage_lie_rhs_on_path(const Problem& problem, const Mat3& R, const double* z,
                                                          double* omega, double* dz, Cost& cost) {
   ModelMargins m;
   problem.model().lie_rhs_on_path<General>(R, z, omega, dz, m);
-  cost.note(m);
+  cost.note<WatchNear>(m);
 }
 
 // The states at the recorded output times, in order.

@@ -5,6 +5,8 @@
 // products' (exp_product_stepper.hpp). The one stage-sum type.
 #include <array>
 #include <cstddef>
+#include <type_traits>
+#include <utility>
 
 #include "integrators/tableau.hpp"
 
@@ -15,9 +17,11 @@ namespace rb {
 // zeros without testing them and read no std::vector in the step.
 struct StageTerms {
   struct Row {
-    int count = 0;                           // non-zero terms
-    std::array<int, kMaxStages> index{};     // j of each term, increasing
-    std::array<double, kMaxStages> coeff{};  // a_ij (or b_j) of each term
+    int count = 0;                              // non-zero terms
+    std::array<int, kMaxStages> index{};        // j of each term, increasing
+    std::array<double, kMaxStages> coeff{};     // a_ij (or b_j) of each term
+    std::array<double, kMaxStages> by_stage{};  // a_ij (or b_j) by j, 0 where there is no term
+    unsigned pattern = 0;                       // bit j set: a term at j (j < kMaxStages = 32)
     Row() = default;
     // the non-zero ones of the first count weights w[0..count)
     Row(const double* w, int count) {
@@ -27,6 +31,8 @@ struct StageTerms {
       if (value == 0.0) return;
       index[static_cast<std::size_t>(count)] = j;
       coeff[static_cast<std::size_t>(count)] = value;
+      by_stage[static_cast<std::size_t>(j)] = value;
+      pattern |= 1u << j;
       ++count;
     }
     // out = base + h c_0 k[j_0] + h c_1 k[j_1] + ...: for up to four terms
@@ -73,8 +79,59 @@ struct StageTerms {
       }
     }
 
+    // The same two sums over the stages j < J, J known at compile time (a
+    // fixed step's unrolled stage loop, k local to the step): the same
+    // terms added in the same order, each k_j addressed at compile time, so
+    // that the stages' derivatives stay in registers. Summed through memory
+    // at run-time indices, each stage reloaded what the one before had just
+    // stored, in wider loads than its stores, which the CPU cannot forward
+    // (docs/performance.md, "rkmk4 at the limit").
+    template <int J, class V, class K>
+    [[gnu::always_inline]] void sum_first(V& out, const V& base, double h, const K& k) const {
+      first_terms<J, true>(out, &base, h, k);
+    }
+    template <int J, class V, class K>
+    [[gnu::always_inline]] void sum_first(V& out, double h, const K& k) const {
+      first_terms<J, false>(out, static_cast<const V*>(nullptr), h, k);
+    }
+
    private:
     static constexpr int kShortVector = 5;
+    // sum_first: (base + t_0) + t_1 + ... over the non-zero terms, or
+    // t_0 + t_1 + ... (0 if none) without a base, as scalar_sum adds them
+    // The row's pattern of non-zero terms (bit j: a term at stage j) picks
+    // one of the 2^J sums, each with its terms at compile time.
+    template <int J, bool Base, class V, class K>
+    [[gnu::always_inline]] void first_terms(V& out, const V* base, double h, const K& k) const {
+      static_assert(J <= 4, "sum_first unrolls up to four stages (2^J sums)");
+      constexpr unsigned all = (1u << J) - 1u;
+      const unsigned p = pattern & all;  // the terms are at j < J: p is pattern
+      [&]<unsigned... m>(std::integer_sequence<unsigned, m...>) __attribute__((always_inline)) {
+        if (!((p == m ? (pattern_terms<m, J, Base>(out, base, h, k), true) : false) || ...))
+          pattern_terms<all, J, Base>(out, base, h, k);
+      }
+      (std::make_integer_sequence<unsigned, all>{});
+    }
+    template <unsigned Pattern, int J, bool Base, class V, class K>
+    [[gnu::always_inline]] void pattern_terms(V& out, const V* base, double h, const K& k) const {
+      // the row read once, before anything is stored (out might alias it)
+      double c[J > 0 ? J : 1];
+      for (int j = 0; j < J; ++j) c[j] = h * by_stage[static_cast<std::size_t>(j)];
+      for (int e = 0; e < V::SizeAtCompileTime; ++e) {
+        double s = Base ? base->data()[e] : 0.0;
+        bool started = Base;
+        [&]<std::size_t... j>(std::index_sequence<j...>) __attribute__((always_inline)) {
+          const auto add = [&](std::size_t n) __attribute__((always_inline)) {
+            const double t = c[n] * k[n].data()[e];
+            s = started ? s + t : t;
+            started = true;
+          };
+          ((Pattern >> j & 1u ? add(j) : void()), ...);
+        }
+        (std::make_index_sequence<J>{});
+        out.data()[e] = s;
+      }
+    }
     // the same sums entry by entry, in the same order: (base + t_0) + t_1 + ...
     template <bool Base, class V, class K>
     [[gnu::always_inline]] void scalar_sum(V& out, const V* base, double h, const K& k) const {

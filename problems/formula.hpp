@@ -207,10 +207,16 @@ class Formula {
   Jet2<T> run(const T& x, const T& y) const;
   template <std::size_t N>
   double run_value(double x, double y) const;
+  // The six numbers are read one by one (volatile): the compiled code
+  // stores them one by one, and a caller that read two at once (GCC pairs
+  // fx and fy for the unit normal) waited for the stores to reach the cache
+  // instead of taking them from the store queue (docs/performance.md,
+  // "rkmk4 at the limit").
   [[gnu::always_inline]] static Jet2<double> run_native(NativeFormula::Function fn, double x, double y) {
     double out[6];
     fn(x, y, out);
-    return {out[0], out[1], out[2], out[3], out[4], out[5]};
+    const volatile double* read = out;
+    return {read[0], read[1], read[2], read[3], read[4], read[5]};
   }
   // Lowers program_ to tape_ where it fits (formula.cpp).
   void lower_to_tape();

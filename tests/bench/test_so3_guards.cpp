@@ -95,5 +95,24 @@ TEST(Dexpinv, AStepAtThePoleIsAStatusNeverAValue) {
   EXPECT_GT(adaptive.cost.rejected, 0);
 }
 
+// The same stop on each fixed-step code path: the homogeneous ball's, which
+// looks for the edge once at the step's end, with its stages unrolled
+// (rkmk4) or looped (rkmk5), and an anisotropic ball's, whose stages read
+// their rotation, looked for at every stage.
+TEST(Dexpinv, AFixedStepAtThePoleStopsOnEveryCodePath) {
+  for (const char* scene : {"bowl-3d", "chaplygin-valley"})
+    for (const char* method : {"rkmk4", "rkmk5"}) {
+      const Problem problem = make_problem(load_scene(scene));
+      const double spin = problem.model().derived(problem.y0()).omega.norm();
+      RunOptions o;
+      o.h = 1.02 * kDexpinvMaxAngle / spin;
+      o.t_end = 4 * o.h;
+      const RunResult fixed = find_integrator(method).integrate(problem, o);
+      EXPECT_EQ(fixed.status, Status::chart_limit) << scene << " " << method << ": " << fixed.message;
+      EXPECT_NE(fixed.message.find("past the exponential chart's edge"), std::string::npos) << fixed.message;
+      EXPECT_EQ(fixed.final_state, problem.y0()) << scene << " " << method;
+    }
+}
+
 }  // namespace
 }  // namespace rb

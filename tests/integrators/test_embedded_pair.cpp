@@ -3,7 +3,9 @@
 // stage-sum type's sums over the non-zero terms only.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -108,6 +110,47 @@ TEST(StageSums, ARowKeepsItsNonZeroWeightsAndSumsThemInOrder) {
   row.sum(from_base, Eigen::Vector2d(1.0, 1.0), 2.0, k);
   EXPECT_EQ(sum, Eigen::Vector2d(1.0 * 1.0 - 0.5 * 3.0 + 4.0 * 5.0, -1.0 + 0.5 - 4.0));
   EXPECT_EQ(from_base, Eigen::Vector2d(1.0 + 1.0 * 1.0 - 0.5 * 3.0 + 4.0 * 5.0, 1.0 - 1.0 + 0.5 - 4.0));
+}
+
+// sum_first<J> (a fixed step's unrolled stages) adds the same terms in the
+// same order as sum: bit for bit, over every pattern of zeros in a row of
+// J <= 4 terms, with and without a base; a zero's stage is never read.
+template <int J>
+void expect_sum_first_is_sum() {
+  const double weights[4] = {0.1, -2.0 / 3.0, 1.0 / 7.0, 0.3};
+  for (unsigned pattern = 0; pattern < (1u << J); ++pattern) {
+    std::vector<double> w(J, 0.0);
+    std::array<ZState, kMaxStages> k;
+    for (int j = 0; j < J; ++j) {
+      const bool term = (pattern >> j & 1u) != 0;
+      w[static_cast<std::size_t>(j)] = term ? weights[j] : 0.0;
+      k[static_cast<std::size_t>(j)] = term ? ZState(ZState::LinSpaced(0.37 * (j + 1), 1.9 / (j + 2)))
+                                            : ZState(ZState::Constant(std::numeric_limits<double>::quiet_NaN()));
+    }
+    const StageTerms::Row row(w.data(), J);
+    const ZState base = ZState::LinSpaced(-1.3, 0.7);
+    const double h = 0.013;
+    ZState sum, first, sum_base, first_base;
+    row.sum(sum, h, k);
+    row.sum_first<J>(first, h, k);
+    row.sum(sum_base, base, h, k);
+    row.sum_first<J>(first_base, base, h, k);
+    for (int e = 0; e < kZSize; ++e) {
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(first[e]), std::bit_cast<std::uint64_t>(sum[e])) << J << " " << pattern;
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(first_base[e]), std::bit_cast<std::uint64_t>(sum_base[e]))
+          << J << " " << pattern;
+    }
+    if (pattern == 0) {
+      EXPECT_EQ(first, ZState::Zero());
+    }
+  }
+}
+
+TEST(StageSums, SumFirstAddsTheSameTermsAsSumBitForBitOverEveryPatternOfZeros) {
+  expect_sum_first_is_sum<1>();
+  expect_sum_first_is_sum<2>();
+  expect_sum_first_is_sum<3>();
+  expect_sum_first_is_sum<4>();
 }
 
 }  // namespace

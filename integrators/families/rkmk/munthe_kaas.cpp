@@ -58,18 +58,22 @@ struct PairRun {
 };
 
 // The one maker: the RKMK stepper of one run, handed to use (stepped_method's
-// drive, or adaptive_method's), which returns the run's result. Fixed steps
-// (Estimating = false) unroll the stage loop for up to four stages; a pair
-// chooses its dense output and the ball's code path (the four pairs).
+// drive, or adaptive_method's), which returns the run's result. Both choose
+// the ball's code path (General); fixed steps (Estimating = false) unroll
+// the stage loop for up to four stages, a pair chooses its dense output.
 template <bool Estimating, class Coordinates, class Use>
 RunResult with_rkmk_stepper(const Problem& problem, const Tableau& tableau, Coordinates map, const PairRun* pair,
                             Use&& use) {
   const StageTerms terms(tableau);
   RkmkStages stages;
+  const bool general = problem.model().has_inertia();
   if constexpr (!Estimating) {
     auto fixed = [&]<int S>() {
-      RkmkStepper<S, Coordinates> stepper(problem, tableau, terms, map, stages);
-      return use(stepper);
+      auto on_path = [&]<bool General>() {
+        RkmkStepper<S, Coordinates, false, General> stepper(problem, tableau, terms, map, stages);
+        return use(stepper);
+      };
+      return general ? on_path.template operator()<true>() : on_path.template operator()<false>();
     };
     switch (terms.stages) {
       case 1: return fixed.template operator()<1>();
@@ -84,7 +88,6 @@ RunResult with_rkmk_stepper(const Problem& problem, const Tableau& tableau, Coor
                                                           pair->outputs);
       return use(stepper);
     };
-    const bool general = problem.model().has_inertia();
     if (pair->dense) return general ? run.template operator()<true, true>() : run.template operator()<true, false>();
     return general ? run.template operator()<false, true>() : run.template operator()<false, false>();
   }

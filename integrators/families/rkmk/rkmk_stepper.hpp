@@ -32,6 +32,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -80,18 +81,24 @@ struct CayleyCoordinates {
   void check_chart(const Vec3& /*u*/) const {}  // dcayinv has no pole
 };
 
-// The stages' derivatives, held in the frame that makes the stepper so that
-// a step allocates nothing.
-struct RkmkStages {
-  std::array<Vec3, kMaxStages> K;    // u' at the stages
-  std::array<ZState, kMaxStages> L;  // z' at the stages
+// The stages' derivatives of a step. A pair's (and a fixed step's of any
+// stage count) are held in the frame that makes the stepper, so that a step
+// allocates nothing; a fixed step of N stages known at compile time keeps
+// its own, local, where they stay in registers.
+template <std::size_t N>
+struct StageDerivatives {
+  std::array<Vec3, N> K;    // u' at the stages
+  std::array<ZState, N> L;  // z' at the stages
 };
+using RkmkStages = StageDerivatives<kMaxStages>;
 
 // S stages unrolled (S = 0: any number; the pairs). Coordinates: exp and
 // dexpinv, or cay and dcayinv. Dense: the pair's outputs by its dense
-// output, else clamped steps. General: the ball has inertia
-// (RollingBall::has_inertia()), so that a pair's evaluation is inlined on
-// that code path. Dense and General concern the pair only.
+// output, else clamped steps (Dense concerns the pair only). General: the
+// ball has inertia (RollingBall::has_inertia()), so that every stage's
+// evaluation is inlined on that code path, and only there the stages
+// orient an anisotropic ball (the homogeneous ball's fixed step then
+// carries none of that code: docs/performance.md, "rkmk4 at the limit").
 template <int S, class Coordinates, bool Dense = false, bool General = false>
 class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, General>> {
  public:
@@ -105,8 +112,7 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
         terms_(terms),
         map_(map),
         anisotropic_(problem.model().anisotropic()),
-        K_(stages.K),
-        L_(stages.L),
+        frame_(stages),
         fsal_(tableau.fsal_stage().value_or(-1)),
         fsal_in_attempt_(tableau.fsal_in_attempt()) {}
 
@@ -129,25 +135,12 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
   // stages skip that test (Cost::note). Every stage's validity margins are
   // noted in cost.
   void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost) {
-    const ZState z = z_of(y);
-    // R_n, read in place: the homogeneous ball's right-hand side does not
-    // read R, so its stages are given any rotation and R_n is read once, by
-    // the update; only an anisotropic ball's stages take a copy
-    const Eigen::Map<const RowMajorMat3> Rn(y.data() + kOffsetR);
-    Mat3 R_copy;
-    const Mat3* R = &kAnyRotation;
-    if (anisotropic_) {
-      R_copy = Rn;
-      R = &R_copy;
+    if constexpr (S > 0) {
+      StageDerivatives<S> local;
+      fixed_step(local, y, next, h, cost);
+    } else {
+      fixed_step(frame_, y, next, h, cost);
     }
-    // the first stage, at u = 0 (dexpinv the identity) and R itself
-    stage_lie_rhs<false>(problem_, *R, z.data(), K_[0].data(), L_[0].data(), cost);
-    Vec3 u;
-    ZState dz;
-    step<false>(*R, z, h, u, dz, cost);
-    advance(y, z, u, dz, next);
-    cost.rhs_evals += S > 0 ? S : terms_.stages;
-    ++cost.exp_evals;
   }
 
   // ---- the embedded pair (drive_estimating, EmbeddedPair) ----
@@ -161,10 +154,10 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
 
   // the step (u_n+1, z_n+1 - z_n) kept in u_new_, dz_new_ for commit
   double attempt(double h, Cost& cost) {
-    K_[0] = omega_first_;
-    L_[0] = g_first_;
+    frame_.K[0] = omega_first_;
+    frame_.L[0] = g_first_;
     cost.rhs_evals += terms_.attempt - 1;
-    return step<true>(R_, z_, h, u_new_, dz_new_, cost);
+    return step<true>(frame_, R_, z_, h, u_new_, dz_new_, cost);
   }
   bool tried_finite() const { return u_new_.allFinite() && dz_new_.allFinite(); }
 
@@ -179,7 +172,7 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
     // the next step's first stage
     if (fsal_in_attempt_) {
       omega_first_ = omega_fsal_;
-      g_first_ = L_[static_cast<std::size_t>(fsal_)];
+      g_first_ = frame_.L[static_cast<std::size_t>(fsal_)];
     } else {
       // its margins stay in cost.watch for the driver's look after the
       // next attempt, whose first stage this is
@@ -211,6 +204,30 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
   }
 
  private:
+  // A fixed step from y into next, its stages' derivatives in f.
+  template <class Frame>
+  [[gnu::always_inline]] void fixed_step(Frame& f, const FlatState& y, FlatState& next, double h, Cost& cost) {
+    const ZState z = z_of(y);
+    // R_n, read in place: the homogeneous ball's right-hand side does not
+    // read R, so its stages are given any rotation and R_n is read once, by
+    // the update; only an anisotropic ball's stages take a copy
+    const Eigen::Map<const RowMajorMat3> Rn(y.data() + kOffsetR);
+    Mat3 R_copy;
+    const Mat3* R = &kAnyRotation;
+    if (General && anisotropic_) {
+      R_copy = Rn;
+      R = &R_copy;
+    }
+    // the first stage, at u = 0 (dexpinv the identity) and R itself
+    rhs<false>(*R, z, f.K[0], f.L[0], cost);
+    Vec3 u;
+    ZState dz;
+    step<false>(f, *R, z, h, u, dz, cost);
+    advance(y, z, u, dz, next);
+    cost.rhs_evals += S > 0 ? S : terms_.stages;
+    ++cost.exp_evals;
+  }
+
   // phi(u) R_n into out (9 numbers, row-major) from R_n at Rn (the same):
   // the new state's R, as the step's update and a pair's FSAL stage form
   // it (a product into a column-major matrix rounds differently).
@@ -225,29 +242,35 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
     next.tail<kZSize>() = z + dz;
   }
 
-  // The one stage loop: stages 1.. from the first (in K_[0], L_[0]) at
+  // The one stage loop: stages 1.. from the first (in f.K[0], f.L[0]) at
   // (R, z), the step's increment (u, dz) = h sum b_j (K_j, L_j); with
   // Estimate the attempt's stages and the error norm, else 0.
-  template <bool Estimate>
-  [[gnu::always_inline]] double step(const Mat3& R, const ZState& z, double h, Vec3& u, ZState& dz, Cost& cost) {
+  template <bool Estimate, class Frame>
+  [[gnu::always_inline]] double step(Frame& f, const Mat3& R, const ZState& z, double h, Vec3& u, ZState& dz,
+                                     Cost& cost) {
     if constexpr (!Estimate && S > 0) {
-      // a known stage count unrolled in full (as a loop, GCC kept rkmk4's
-      // three later stages one loop body, callgrind: 487 instructions run 3 times)
+      // a known stage count unrolled in full, each stage's index a
+      // compile-time constant (as a loop, GCC kept rkmk4's three later
+      // stages one loop body, callgrind: 487 instructions run 3 times)
       [&]<std::size_t... I>(std::index_sequence<I...>) __attribute__((always_inline)) {
-        (stage<false>(I + 1, R, z, h, cost), ...);
+        (stage<false>(f, std::integral_constant<std::size_t, I + 1>{}, R, z, h, cost), ...);
       }
       (std::make_index_sequence<S - 1>{});
+      terms_.b.template sum_first<S>(u, h, f.K);
+      terms_.b.template sum_first<S>(dz, h, f.L);
+      chart_edge_at_end(f, u, h);
     } else {
       const int stages = Estimate ? terms_.attempt : terms_.stages;
-      for (std::size_t i = 1; i < static_cast<std::size_t>(stages); ++i) stage<Estimate>(i, R, z, h, cost);
-    }
-    if (Estimate && fsal_in_attempt_) {
-      // the FSAL stage is the new state (its row of A is b)
-      u = u_fsal_;
-      dz = dz_fsal_;
-    } else {
-      terms_.b.sum(u, h, K_);
-      terms_.b.sum(dz, h, L_);
+      for (std::size_t i = 1; i < static_cast<std::size_t>(stages); ++i) stage<Estimate>(f, i, R, z, h, cost);
+      if (Estimate && fsal_in_attempt_) {
+        // the FSAL stage is the new state (its row of A is b)
+        u = u_fsal_;
+        dz = dz_fsal_;
+      } else {
+        terms_.b.sum(u, h, f.K);
+        terms_.b.sum(dz, h, f.L);
+      }
+      if constexpr (!Estimate) chart_edge_at_end(f, u, h);
     }
     if constexpr (Estimate) return error_norm(z, dz, h);
     return 0.0;
@@ -256,39 +279,46 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
   // Stage i at (U, Z - z) = h sum_j a_ij (K_j, L_j), from the step's start
   // (R, z): K_i = dexpinv_U(omega(R_i, Z)), L_i = G(R_i, Z); the stage
   // orientation R_i = phi(U) R is formed only where R enters (anisotropic
-  // ball). The FSAL stage's Z is z + dz, exactly the new state's.
-  template <bool Estimate>
-  [[gnu::always_inline]] void stage(std::size_t i, const Mat3& R, const ZState& z, double h, Cost& cost) {
+  // ball). The FSAL stage's Z is z + dz, exactly the new state's. Index:
+  // std::size_t, or a compile-time constant (std::integral_constant) in a
+  // fixed step's unrolled loop, whose sums then address f at compile time.
+  template <bool Estimate, class Frame, class Index>
+  [[gnu::always_inline]] void stage(Frame& f, Index i, const Mat3& R, const ZState& z, double h, Cost& cost) {
+    constexpr bool known = !std::is_same_v<Index, std::size_t>;
     const StageTerms::Row& row = terms_.a[i];
     ZState Z;
     Vec3 U;
     const bool fsal = Estimate && static_cast<int>(i) == fsal_;
-    if (fsal) {
-      row.sum(dz_fsal_, h, L_);
+    if constexpr (known) {
+      row.template sum_first<Index::value>(Z, z, h, f.L);
+    } else if (fsal) {
+      row.sum(dz_fsal_, h, f.L);
       Z = z + dz_fsal_;
     } else {
-      row.sum(Z, z, h, L_);
+      row.sum(Z, z, h, f.L);
     }
-    row.sum(U, h, K_);
+    stage_u(f, i, h, U);
     Vec3 omega;
-    if ((!Estimate || General) && anisotropic_) {
+    if (General && anisotropic_) {
       // R enters omega and G: evaluate at the stage's own orientation, the
       // FSAL stage's the new state's (the next step's first stage)
       if (fsal) {
         std::array<double, 9> R_new;
         rotate(y_.data() + kOffsetR, U, R_new.data());
-        rhs<Estimate>(Mat3(Eigen::Map<const RowMajorMat3>(R_new.data())), Z, omega, L_[i], cost);
+        rhs<Estimate>(Mat3(Eigen::Map<const RowMajorMat3>(R_new.data())), Z, omega, f.L[i], cost);
       } else {
-        rhs<Estimate>(Mat3(map_.exp(U) * R), Z, omega, L_[i], cost);
+        rhs<Estimate>(Mat3(map_.exp(U) * R), Z, omega, f.L[i], cost);
       }
       ++cost.exp_evals;
     } else {
-      rhs<Estimate>(R, Z, omega, L_[i], cost);
+      rhs<Estimate>(R, Z, omega, f.L[i], cost);
     }
-    K_[i] = map_.dexpinv(U, omega);
+    f.K[i] = map_.dexpinv(U, omega);
     ++cost.dexpinv_evals;
-    if constexpr (!Estimate) {
-      if (!std::isfinite(K_[i].x())) [[unlikely]]
+    if constexpr (!Estimate && General) {
+      // an anisotropic ball's later stages turn it by this stage's U: the
+      // chart's edge is looked for at once
+      if (!std::isfinite(f.K[i].x())) [[unlikely]]
         map_.check_chart(U);
     }
     if (fsal) {
@@ -297,12 +327,45 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
     }
   }
 
-  // A fixed step's stage notes no near-limit margins (drive_fixed_step
-  // never reads them); a pair's, on its code path General, does.
+  // Stage i's U = h sum_j a_ij K_j, addressed at compile time where i is
+  // known.
+  template <class Frame, class Index>
+  [[gnu::always_inline]] void stage_u(const Frame& f, Index i, double h, Vec3& U) const {
+    if constexpr (std::is_same_v<Index, std::size_t>) terms_.a[i].sum(U, h, f.K);
+    else terms_.a[i].template sum_first<Index::value>(U, h, f.K);
+  }
+
+  // A fixed step's look for a stage past the chart's edge (a dexpinv not
+  // finite: ExpCoordinates::check_chart), in stage order, where the ball is
+  // homogeneous: its stages do not read their rotation, so a stage past the
+  // edge only makes the step's u not finite, and one test at the step's end
+  // finds it (a test at every stage cost rkmk4 about a tenth of its step:
+  // docs/performance.md, "rkmk4 at the limit").
+  template <class Frame>
+  [[gnu::always_inline]] void chart_edge_at_end(const Frame& f, const Vec3& u, double h) const {
+    if constexpr (!General) {
+      if (std::isfinite(u.x())) [[likely]]
+        return;
+      const auto look = [&](auto i) {
+        if (std::isfinite(f.K[i].x())) return;
+        Vec3 U;
+        stage_u(f, i, h, U);
+        map_.check_chart(U);
+      };
+      if constexpr (S > 0) {
+        [&]<std::size_t... I>(std::index_sequence<I...>) { (look(std::integral_constant<std::size_t, I + 1>{}), ...); }
+        (std::make_index_sequence<S - 1>{});
+      } else {
+        for (std::size_t i = 1; i < static_cast<std::size_t>(terms_.stages); ++i) look(i);
+      }
+    }
+  }
+
+  // A stage's evaluation on the code path General. A fixed step's notes no
+  // near-limit margins (drive_fixed_step never reads them); a pair's does.
   template <bool Estimate>
   [[gnu::always_inline]] void rhs(const Mat3& R, const ZState& Z, Vec3& omega, ZState& dz, Cost& cost) const {
-    if constexpr (Estimate) stage_lie_rhs_on_path<General>(problem_, R, Z.data(), omega.data(), dz.data(), cost);
-    else stage_lie_rhs<false>(problem_, R, Z.data(), omega.data(), dz.data(), cost);
+    stage_lie_rhs_on_path<General, Estimate>(problem_, R, Z.data(), omega.data(), dz.data(), cost);
   }
 
   // The controller's error: RMS of h sum e_i (K_i, L_i) against the scales
@@ -321,8 +384,8 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
   [[gnu::always_inline]] const LieVec& estimate(const StageTerms::Row& w, double h, LieVec& out) const {
     Vec3 eu;
     ZState ez;
-    w.sum(eu, h, K_);
-    w.sum(ez, h, L_);
+    w.sum(eu, h, frame_.K);
+    w.sum(ez, h, frame_.L);
     out.head<3>() = eu;
     out.tail<kZSize>() = ez;
     return out;
@@ -340,13 +403,13 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
     // the stages only the dense output needs; the FSAL one among them is
     // the next step's first stage, already evaluated (its dexpinv differs)
     if (fsal_ >= terms_.attempt) {
-      K_[static_cast<std::size_t>(fsal_)] = map_.dexpinv(u_new_, omega_first_);
-      L_[static_cast<std::size_t>(fsal_)] = g_first_;
+      frame_.K[static_cast<std::size_t>(fsal_)] = map_.dexpinv(u_new_, omega_first_);
+      frame_.L[static_cast<std::size_t>(fsal_)] = g_first_;
       ++cost.dexpinv_evals;
     }
     for (int i = terms_.attempt; i < p.total_stages(); ++i)
       if (i != fsal_) {
-        stage<true>(static_cast<std::size_t>(i), R_prev_, z_prev_, h, cost);
+        stage<true>(frame_, static_cast<std::size_t>(i), R_prev_, z_prev_, h, cost);
         ++cost.rhs_evals;
       }
     for (std::size_t m = next_out_; m < out.size() && out[m] < t + h; ++m) {
@@ -357,8 +420,8 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
         const double* d = &p.dense()[static_cast<std::size_t>(j * p.dense_degree())];
         double b = 0.0;
         for (int q = p.dense_degree() - 1; q >= 0; --q) b = (b + d[q]) * theta;
-        su += b * K_[static_cast<std::size_t>(j)];
-        sz += b * L_[static_cast<std::size_t>(j)];
+        su += b * frame_.K[static_cast<std::size_t>(j)];
+        sz += b * frame_.L[static_cast<std::size_t>(j)];
       }
       FlatState y;
       set_rotation(y, map_.exp(Vec3(h * su)) * R_prev_);
@@ -373,9 +436,8 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
   const Tableau& tableau_;
   const StageTerms& terms_;
   Coordinates map_;
-  bool anisotropic_;  // stage orientations needed
-  std::array<Vec3, kMaxStages>& K_;
-  std::array<ZState, kMaxStages>& L_;
+  bool anisotropic_;      // stage orientations needed
+  RkmkStages& frame_;     // the pair's stages (and a fixed step's of any count)
   int fsal_;              // the FSAL stage, -1 without one
   bool fsal_in_attempt_;  // the error estimate uses it (BS32, DP54)
   // the pair's
