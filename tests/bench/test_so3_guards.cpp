@@ -95,10 +95,9 @@ TEST(Dexpinv, AStepAtThePoleIsAStatusNeverAValue) {
   EXPECT_GT(adaptive.cost.rejected, 0);
 }
 
-// The same stop on each fixed-step code path: the homogeneous ball's, which
-// looks for the edge once at the step's end, with its stages unrolled
-// (rkmk4) or looped (rkmk5), and an anisotropic ball's, whose stages read
-// their rotation, looked for at every stage.
+// The same stop on each fixed-step code path: the homogeneous ball's and an
+// anisotropic ball's (General), with the stages unrolled (rkmk4) or looped
+// (rkmk5); each tests a stage's U against the edge before its dexpinv.
 TEST(Dexpinv, AFixedStepAtThePoleStopsOnEveryCodePath) {
   for (const char* scene : {"bowl-3d", "chaplygin-valley"})
     for (const char* method : {"rkmk4", "rkmk5"}) {

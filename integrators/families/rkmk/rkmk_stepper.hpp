@@ -59,16 +59,23 @@ struct ExpCoordinates {
   // chart's edge (|u| >= kDexpinvMaxAngle, the closed form's pole) the step
   // cannot be taken in these coordinates, which is the status chart-limit,
   // not a divergence of the state. (A pair's step is rejected and shrunk.)
-  void check_chart(const Vec3& u) const {
+  [[gnu::cold, gnu::noinline]] void check_chart(double angle) const {
     // a NaN stage (the state itself not finite) is no chart's edge
-    if (kind == DexpinvKind::exact && u.norm() >= kDexpinvMaxAngle) {
+    if (kind == DexpinvKind::exact && angle >= kDexpinvMaxAngle) {
       char text[256];
       std::snprintf(text, sizeof text,
                     "a stage turns the ball by |u| = %.4g rad, past the exponential chart's edge (%.4g rad, "
                     "dexpinv's pole at 2 pi): the step is too large for these coordinates",
-                    u.norm(), kDexpinvMaxAngle);
+                    angle, kDexpinvMaxAngle);
       throw StepFailure(Status::chart_limit, text);
     }
+  }
+  // Whether check_chart might throw at this stage: a bound a little below
+  // the edge (every |u| >= kDexpinvMaxAngle passes it), tested where u is
+  // known, so that the exact test runs only near the edge.
+  [[gnu::always_inline]] bool near_chart_edge(const Vec3& u) const {
+    constexpr double bound = kDexpinvMaxAngle * (1.0 - 1e-9);
+    return u.squaredNorm() >= bound * bound;
   }
   [[gnu::always_inline]] Mat3 exp(const Vec3& u) const { return so3_exp(u); }
   [[gnu::always_inline]] Vec3 dexpinv(const Vec3& u, const Vec3& w) const { return rb::dexpinv(u, w, kind); }
@@ -78,7 +85,9 @@ struct ExpCoordinates {
 struct CayleyCoordinates {
   [[gnu::always_inline]] Mat3 exp(const Vec3& u) const { return so3_cay(u); }
   [[gnu::always_inline]] Vec3 dexpinv(const Vec3& u, const Vec3& w) const { return dcayinv(u, w); }
-  void check_chart(const Vec3& /*u*/) const {}  // dcayinv has no pole
+  // dcayinv has no pole
+  bool near_chart_edge(const Vec3& /*u*/) const { return false; }
+  void check_chart(double /*angle*/) const {}
 };
 
 // The stages' derivatives of a step. A pair's (and a fixed step's of any
@@ -258,7 +267,6 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
       (std::make_index_sequence<S - 1>{});
       terms_.b.template sum_first<S>(u, h, f.K);
       terms_.b.template sum_first<S>(dz, h, f.L);
-      chart_edge_at_end(f, u, h);
     } else {
       const int stages = Estimate ? terms_.attempt : terms_.stages;
       for (std::size_t i = 1; i < static_cast<std::size_t>(stages); ++i) stage<Estimate>(f, i, R, z, h, cost);
@@ -270,7 +278,6 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
         terms_.b.sum(u, h, f.K);
         terms_.b.sum(dz, h, f.L);
       }
-      if constexpr (!Estimate) chart_edge_at_end(f, u, h);
     }
     if constexpr (Estimate) return error_norm(z, dz, h);
     return 0.0;
@@ -315,11 +322,12 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
     }
     f.K[i] = map_.dexpinv(U, omega);
     ++cost.dexpinv_evals;
-    if constexpr (!Estimate && General) {
-      // an anisotropic ball's later stages turn it by this stage's U: the
-      // chart's edge is looked for at once
-      if (!std::isfinite(f.K[i].x())) [[unlikely]]
-        map_.check_chart(U);
+    if constexpr (!Estimate) {
+      // tested first on U, known when the stage starts, not on K, its last
+      // number: a branch on K held back everything after it (a tenth of
+      // rkmk4's step; docs/performance.md, "rkmk4 at the limit")
+      if (map_.near_chart_edge(U)) [[unlikely]]
+        if (!std::isfinite(f.K[i].x())) map_.check_chart(U.norm());
     }
     if (fsal) {
       u_fsal_ = U;
@@ -333,32 +341,6 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
   [[gnu::always_inline]] void stage_u(const Frame& f, Index i, double h, Vec3& U) const {
     if constexpr (std::is_same_v<Index, std::size_t>) terms_.a[i].sum(U, h, f.K);
     else terms_.a[i].template sum_first<Index::value>(U, h, f.K);
-  }
-
-  // A fixed step's look for a stage past the chart's edge (a dexpinv not
-  // finite: ExpCoordinates::check_chart), in stage order, where the ball is
-  // homogeneous: its stages do not read their rotation, so a stage past the
-  // edge only makes the step's u not finite, and one test at the step's end
-  // finds it (a test at every stage cost rkmk4 about a tenth of its step:
-  // docs/performance.md, "rkmk4 at the limit").
-  template <class Frame>
-  [[gnu::always_inline]] void chart_edge_at_end(const Frame& f, const Vec3& u, double h) const {
-    if constexpr (!General) {
-      if (std::isfinite(u.x())) [[likely]]
-        return;
-      const auto look = [&](auto i) {
-        if (std::isfinite(f.K[i].x())) return;
-        Vec3 U;
-        stage_u(f, i, h, U);
-        map_.check_chart(U);
-      };
-      if constexpr (S > 0) {
-        [&]<std::size_t... I>(std::index_sequence<I...>) { (look(std::integral_constant<std::size_t, I + 1>{}), ...); }
-        (std::make_index_sequence<S - 1>{});
-      } else {
-        for (std::size_t i = 1; i < static_cast<std::size_t>(terms_.stages); ++i) look(i);
-      }
-    }
   }
 
   // A stage's evaluation on the code path General. A fixed step's notes no
