@@ -113,5 +113,22 @@ TEST(Dexpinv, AFixedStepAtThePoleStopsOnEveryCodePath) {
     }
 }
 
+// A step whose stage passes the edge stops there: the stages after it, which
+// a large step may take beyond the model's limits (bowl-planar at h = 1: off
+// the landscape's finite region), are not looked at, so the stop is the
+// chart's, not theirs (the default preset's runs of rkmk4 and rkmk5 there).
+TEST(Dexpinv, AStageAtThePoleStopsItsStepBeforeLaterStagesAreSeen) {
+  const Problem problem = make_problem(load_scene("bowl-planar"));
+  RunOptions o;
+  o.h = 1.0;
+  o.t_end = 4.0;
+  for (const char* method : {"rkmk4", "rkmk5"}) {
+    const RunResult fixed = find_integrator(method).integrate(problem, o);
+    EXPECT_EQ(fixed.status, Status::chart_limit) << method << ": " << fixed.message;
+    EXPECT_NE(fixed.message.find("past the exponential chart's edge"), std::string::npos) << fixed.message;
+    EXPECT_EQ(fixed.stop_time, 0.0) << method;
+  }
+}
+
 }  // namespace
 }  // namespace rb
