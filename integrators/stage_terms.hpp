@@ -94,11 +94,24 @@ struct StageTerms {
     [[gnu::always_inline]] void sum_first(V& out, double h, const K& k) const {
       first_terms<J, false>(out, static_cast<const V*>(nullptr), h, k);
     }
+    // Stage i's sums over the stages before it: sum where i is known at
+    // run time, sum_first<i> where it is a compile-time constant
+    // (std::integral_constant: a fixed step's unrolled stages).
+    template <class Index, class V, class K>
+    [[gnu::always_inline]] void sum_before(Index /*i*/, V& out, const V& base, double h, const K& k) const {
+      if constexpr (std::is_integral_v<Index>) sum(out, base, h, k);
+      else sum_first<Index::value>(out, base, h, k);
+    }
+    template <class Index, class V, class K>
+    [[gnu::always_inline]] void sum_before(Index /*i*/, V& out, double h, const K& k) const {
+      if constexpr (std::is_integral_v<Index>) sum(out, h, k);
+      else sum_first<Index::value>(out, h, k);
+    }
 
    private:
     static constexpr int kShortVector = 5;
     // sum_first: (base + t_0) + t_1 + ... over the non-zero terms, or
-    // t_0 + t_1 + ... (0 if none) without a base, as scalar_sum adds them
+    // t_0 + t_1 + ... (0 if none) without a base, as scalar_sum adds them.
     // The row's pattern of non-zero terms (bit j: a term at stage j) picks
     // one of the 2^J sums, each with its terms at compile time.
     template <int J, bool Base, class V, class K>

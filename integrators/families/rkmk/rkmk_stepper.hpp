@@ -32,7 +32,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -291,20 +290,17 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
   // fixed step's unrolled loop, whose sums then address f at compile time.
   template <bool Estimate, class Frame, class Index>
   [[gnu::always_inline]] void stage(Frame& f, Index i, const Mat3& R, const ZState& z, double h, Cost& cost) {
-    constexpr bool known = !std::is_same_v<Index, std::size_t>;
     const StageTerms::Row& row = terms_.a[i];
     ZState Z;
     Vec3 U;
     const bool fsal = Estimate && static_cast<int>(i) == fsal_;
-    if constexpr (known) {
-      row.template sum_first<Index::value>(Z, z, h, f.L);
-    } else if (fsal) {
+    if (fsal) {
       row.sum(dz_fsal_, h, f.L);
       Z = z + dz_fsal_;
     } else {
-      row.sum(Z, z, h, f.L);
+      row.sum_before(i, Z, z, h, f.L);
     }
-    stage_u(f, i, h, U);
+    row.sum_before(i, U, h, f.K);
     Vec3 omega;
     if (General && anisotropic_) {
       // R enters omega and G: evaluate at the stage's own orientation, the
@@ -333,14 +329,6 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
       u_fsal_ = U;
       omega_fsal_ = omega;
     }
-  }
-
-  // Stage i's U = h sum_j a_ij K_j, addressed at compile time where i is
-  // known.
-  template <class Frame, class Index>
-  [[gnu::always_inline]] void stage_u(const Frame& f, Index i, double h, Vec3& U) const {
-    if constexpr (std::is_same_v<Index, std::size_t>) terms_.a[i].sum(U, h, f.K);
-    else terms_.a[i].template sum_first<Index::value>(U, h, f.K);
   }
 
   // A stage's evaluation on the code path General. A fixed step's notes no
