@@ -229,6 +229,13 @@ Sym hypot(const Sym& a, const Sym& b) {
 template <>
 inline constexpr bool jet_detail::is_direct_v<Sym> = true;
 
+// a jet's value part is never a structural constant: x^0 - y^0 is a
+// formula's 0, and x^a * (x^0 - y^0) is NaN where x^a is, as in value()
+template <>
+inline Sym jet_detail::value_constant<Sym>(double c) {
+  return numeric(c);
+}
+
 void Formula::lower_to_tape() {
   tape_ = FormulaTape();
   // deep or long formulas keep the stack machine: their tape would not fit

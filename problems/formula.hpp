@@ -245,7 +245,7 @@ Jet2<T> Formula::run(const T& x, const T& y) const {
   for (const Op& op : program_) {
     J& u = s[top == 0 ? 0 : top - 1];
     switch (op.code) {
-      case OpCode::push_const: s[top++] = J::constant(T(op.c)); break;
+      case OpCode::push_const: s[top++] = J::constant(op.c); break;
       case OpCode::push_x: s[top++] = J::variable_x(x); break;
       case OpCode::push_y: s[top++] = J::variable_y(y); break;
       case OpCode::add:

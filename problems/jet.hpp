@@ -27,6 +27,15 @@ namespace jet_detail {
 template <class T>
 inline constexpr bool is_direct_v = std::is_arithmetic_v<T>;
 
+// A constant's value part: T(c), except for the symbolic scalar of the
+// tape lowering, which marks it as a formula's number (formula.cpp): a
+// value computes c * u as value() does, NaN included, where a jet's own
+// zero derivative may absorb a product.
+template <class T>
+T value_constant(double c) {
+  return T(c);
+}
+
 // The double value of an AD number (the number itself for double).
 inline double value_of(double u) { return u; }
 template <class T>
@@ -119,7 +128,7 @@ template <class T>
 struct Jet2 {
   T f, fx, fy, fxx, fxy, fyy;
 
-  static Jet2 constant(const T& c) { return {c, T(0.0), T(0.0), T(0.0), T(0.0), T(0.0)}; }
+  static Jet2 constant(double c) { return {jet_detail::value_constant<T>(c), T(0.0), T(0.0), T(0.0), T(0.0), T(0.0)}; }
   static Jet2 variable_x(const T& x) { return {x, T(1.0), T(0.0), T(0.0), T(0.0), T(0.0)}; }
   static Jet2 variable_y(const T& y) { return {y, T(0.0), T(1.0), T(0.0), T(0.0), T(0.0)}; }
 
@@ -190,7 +199,7 @@ struct Jet2 {
   // u^n, integer n: exact at u = 0 (x^2 at 0 has slope 0 and curvature 2).
   friend Jet2 powi(const Jet2& u, int n) {
     using jet_detail::ipow;
-    if (n == 0) return constant(T(1.0));
+    if (n == 0) return constant(1.0);
     if (n == 1) return u;
     if (n < 0) {
       const Jet2 r = powi(u, -n);

@@ -229,6 +229,25 @@ TEST(Formula, OutsideTheDomainIsNonFiniteNotAnError) {
   EXPECT_TRUE(std::isnan(Formula::parse("log(-1) + x").value(1, 1)));
 }
 
+// A zero made of the formula's own numbers (x^0 - y^0 is 1 - 1) is a number
+// like any other in the value: times a NaN it is NaN, in value() and in the
+// lowered tape alike (a fuzz finding: the tape took it for a jet's
+// structural zero and gave 0).
+TEST(Formula, AZeroOfTheFormulasOwnNumbersTimesNaNIsNaNOnEveryPath) {
+  for (const std::string text :
+       {"x^0.5*(x^0 - y^0) - 4", "(y^0 - x^0)*log(x) + y", "sqrt(x)*(x^0 - 1)", "5 - y - x^a*(x^0 - y^0) - x^-4"}) {
+    const Formula f = Formula::parse(text, {{"a", 0.5}});
+    ASSERT_TRUE(f.tape().usable()) << text;
+    for (const Point& p : std::vector<Point>{{-1.0, 0.5}, {-1e300, 1e-300}}) {
+      EXPECT_TRUE(std::isnan(f.value(p[0], p[1]))) << text;
+      EXPECT_TRUE(std::isnan(f.eval(p[0], p[1]).f)) << text;
+    }
+    // where the factor is finite the zero stays a zero
+    EXPECT_EQ(f.value(4.0, 0.5), f.eval(4.0, 0.5).f) << text;
+    EXPECT_TRUE(std::isfinite(f.eval(4.0, 0.5).f)) << text;
+  }
+}
+
 struct ErrorCase {
   std::string text;
   std::string message;
