@@ -152,7 +152,7 @@ class Formula {
   [[gnu::always_inline]] Jet2<T> eval(const T& x, const T& y) const {
     if constexpr (std::is_same_v<T, double>) {
       if (native_) return run_native(native_.full, x, y);
-      if (tape_.usable()) return tape_.full.run(x, y);
+      if (tape_.usable()) return run_tape(tape_.full, x, y);
     }
     if (max_stack_ <= kSmallStack) return run<T, kSmallStack>(x, y);
     return run<T, kMaxStack>(x, y);
@@ -164,7 +164,7 @@ class Formula {
   [[gnu::always_inline]] Jet2<T> slopes(const T& x, const T& y) const {
     if constexpr (std::is_same_v<T, double>) {
       if (native_) return run_native(native_.slopes, x, y);
-      if (tape_.usable()) return tape_.slopes.run(x, y);
+      if (tape_.usable()) return run_tape(tape_.slopes, x, y);
     }
     Jet2<T> j = eval(x, y);
     j.f = T(std::nan(""));
@@ -217,6 +217,13 @@ class Formula {
     fn(x, y, out);
     const volatile double* read = out;
     return {read[0], read[1], read[2], read[3], read[4], read[5]};
+  }
+  // The tape's interpreter, out of line: inlined into every stage next to
+  // the native call (its 1 KB register file, libm calls and jump table),
+  // it made the stages of native landscapes slower (docs/performance.md,
+  // "rkmk4 at the limit", fifth pass).
+  [[gnu::noinline]] static Jet2<double> run_tape(const TapeProgram& program, double x, double y) {
+    return program.run(x, y);
   }
   // Lowers program_ to tape_ where it fits (formula.cpp).
   void lower_to_tape();

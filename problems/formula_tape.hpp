@@ -91,7 +91,7 @@ class TapeProgram {
   const Jet2<double>& constant_parts() const { return constant_parts_; }
   int first_input() const { return first_input_; }
 
-  // Inlined into the right-hand side, so the jet is not returned in memory.
+  // Inlined into Formula::run_tape, its one caller for doubles.
   [[gnu::always_inline]] Jet2<double> run(double x, double y) const {
     std::array<double, kMaxRegisters> r;
     r[0] = x;

@@ -20,4 +20,22 @@ double rotation_angle_between(const Mat3& R_a, const Mat3& R_b) {
   return std::atan2(0.5 * s.norm(), 0.5 * (Q.trace() - 1.0));
 }
 
+// dexpinv_coefficient from t^2 = 1e-2 on.
+double dexpinv_coefficient_wide(double t2) {
+  if (t2 < 1.0)
+    return 1.0 / 12.0 +
+           t2 * (1.0 / 720.0 +
+                 t2 * (1.0 / 30240.0 +
+                       t2 * (1.0 / 1209600.0 +
+                             t2 * (1.0 / 47900160.0 +
+                                   t2 * (691.0 / 1307674368000.0 +
+                                         t2 * (1.0 / 74724249600.0 +
+                                               t2 * (3617.0 / 10670622842880000.0 +
+                                                     t2 * (43867.0 / 5109094217170944000.0 +
+                                                           t2 * (174611.0 / 802857662698291200000.0)))))))));
+  if (!(t2 < kDexpinvMaxAngle * kDexpinvMaxAngle)) return std::numeric_limits<double>::quiet_NaN();
+  const double t = std::sqrt(t2);
+  return (1.0 - 0.5 * t / std::tan(0.5 * t)) / t2;
+}
+
 }  // namespace rb

@@ -128,24 +128,14 @@ inline constexpr double kDexpinvMaxAngle = 2.0 * M_PI * (15.0 / 16.0);
 // relative there to cancellation); from there to t^2 = 1 to t^18 (truncation
 // below 7e-17 relative), so that no step of a converged run, nor an adaptive
 // step that turns the ball by up to 1 rad, calls tan. The same number to
-// rounding as the closed form. NaN from kDexpinvMaxAngle on.
-inline double dexpinv_coefficient(double t2) {
+// rounding as the closed form. NaN from kDexpinvMaxAngle on. The short
+// series is inlined into the stages, the rest (dexpinv_coefficient_wide)
+// called: out of line as a whole it cost a call a stage.
+double dexpinv_coefficient_wide(double t2);  // so3.cpp
+[[gnu::always_inline]] inline double dexpinv_coefficient(double t2) {
   if (t2 < 1e-2) [[likely]]
     return 1.0 / 12.0 + t2 * (1.0 / 720.0 + t2 * (1.0 / 30240.0 + t2 * (1.0 / 1209600.0 + t2 * (1.0 / 47900160.0))));
-  if (t2 < 1.0)
-    return 1.0 / 12.0 +
-           t2 * (1.0 / 720.0 +
-                 t2 * (1.0 / 30240.0 +
-                       t2 * (1.0 / 1209600.0 +
-                             t2 * (1.0 / 47900160.0 +
-                                   t2 * (691.0 / 1307674368000.0 +
-                                         t2 * (1.0 / 74724249600.0 +
-                                               t2 * (3617.0 / 10670622842880000.0 +
-                                                     t2 * (43867.0 / 5109094217170944000.0 +
-                                                           t2 * (174611.0 / 802857662698291200000.0)))))))));
-  if (!(t2 < kDexpinvMaxAngle * kDexpinvMaxAngle)) return std::numeric_limits<double>::quiet_NaN();
-  const double t = std::sqrt(t2);
-  return (1.0 - 0.5 * t / std::tan(0.5 * t)) / t2;
+  return dexpinv_coefficient_wide(t2);
 }
 
 // dexpinv_u(w) = w - 1/2 u x w + (1/t^2)(1 - (t/2) cot(t/2)) u x (u x w),

@@ -141,8 +141,10 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
 
   // Run only by drive_fixed_step, which never reads Cost::watch.near: its
   // stages skip that test (Cost::note). Every stage's validity margins are
-  // noted in cost.
-  void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost) {
+  // noted in cost. Inlined into the driver's loop: called once a step, it
+  // ran about a twentieth slower (docs/performance.md, "rkmk4 at the limit",
+  // fifth pass).
+  [[gnu::always_inline]] void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost) {
     if constexpr (S > 0) {
       StageDerivatives<S> local;
       fixed_step(local, y, next, h, cost);
