@@ -91,7 +91,8 @@ class TapeProgram {
   const Jet2<double>& constant_parts() const { return constant_parts_; }
   int first_input() const { return first_input_; }
 
-  // Inlined into Formula::run_tape, its one caller for doubles.
+  // Inlined into its callers: Formula::run_tape (itself out of line, for
+  // eval and slopes) and the native code's check against the tape.
   [[gnu::always_inline]] Jet2<double> run(double x, double y) const {
     std::array<double, kMaxRegisters> r;
     r[0] = x;
