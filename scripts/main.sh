@@ -45,8 +45,13 @@ echo
 # the answer first: the findings of summary.md (up to its next section)
 sed -n '/^## Findings/,/^### /p' "$out/plots/summary.md" | sed '$d'
 echo
-echo "per-run table: $(pwd)/$out/run.txt (\"best worst\": the smallest worst error a method reached;"
+# where the outputs are, absolute whether OUT was given relative (to the project's root) or absolute
+case "$out" in
+  /*) where="$out" ;;
+  *) where="$(pwd)/$out" ;;
+esac
+echo "per-run table: $where/run.txt (\"best worst\": the smallest worst error a method reached;"
 echo "  \"its time\": the wall time of that run; adaptive methods have no order)"
-echo "report:     $(pwd)/$out/report.json"
-echo "timings:    $(pwd)/$out/perf.txt"
-echo "plots:      $(pwd)/$out/plots/  (summary: $out/plots/summary.md)"
+echo "report:     $where/report.json"
+echo "timings:    $where/perf.txt"
+echo "plots:      $where/plots/  (summary: $where/plots/summary.md)"
