@@ -43,9 +43,11 @@ namespace {
 #define RB_NATIVE_MARCH "-march=x86-64-v2"
 #endif
 
-// no contraction: a fused multiply-add would round differently from the tape
-const std::vector<std::string> kFlags = {"-O2",          "-fPIC", "-shared", "-ffp-contract=off", "-fno-math-errno",
-                                         RB_NATIVE_MARCH};
+// no contraction: a fused multiply-add would round differently from the tape;
+// -fno-plt: libm's functions (sincos) called through the GOT, without the
+// PLT's jump (callgrind: 8 instructions a step of rkmk4 fewer)
+const std::vector<std::string> kFlags = {
+    "-O2", "-fPIC", "-fno-plt", "-shared", "-ffp-contract=off", "-fno-math-errno", RB_NATIVE_MARCH};
 
 // names the entry's file only: the HMAC, not this hash, authenticates it
 std::uint64_t fnv1a(std::string_view bytes, std::uint64_t h = 1469598103934665603ull) {
