@@ -12,6 +12,34 @@
 
 namespace rb {
 
+// The patterns of non-zero terms of a fixed step's rows, known at compile
+// time (a stage shape): bit j of row i set where a_ij != 0, rows 1..S-1 of
+// A and b as row S, 4 bits a row (row i at bits 4 (i - 1)); S <= 4. A step
+// of known shape sums each row by its own pattern, with no choice among
+// the 2^J sums of StageTerms::Row::sum_first at every stage (callgrind,
+// rkmk4: 3142 -> 3085 instructions a step, docs/performance.md, seventh
+// pass).
+// kRuntimeShape: the patterns are read at run time.
+using StageShape = unsigned;
+inline constexpr StageShape kRuntimeShape = 0;
+// row i's pattern in a shape; kAnyPattern for kRuntimeShape
+inline constexpr unsigned kAnyPattern = ~0u;
+constexpr unsigned shape_row(StageShape shape, int i) {
+  return shape == kRuntimeShape ? kAnyPattern : (shape >> (4 * (i - 1))) & 15u;
+}
+// Each stage from the one before (a_i,i-1 only: classical RK4, Heun), b full.
+constexpr StageShape chain_shape(int stages) {
+  StageShape shape = 0;
+  for (int i = 1; i < stages; ++i) shape |= (1u << (i - 1)) << (4 * (i - 1));
+  return shape | ((1u << stages) - 1u) << (4 * (stages - 1));
+}
+// Every a_ij (j < i) and b_j non-zero (Kutta's third order, the 3/8 rule).
+constexpr StageShape dense_shape(int stages) {
+  StageShape shape = 0;
+  for (int i = 1; i <= stages; ++i) shape |= ((1u << i) - 1u) << (4 * (i - 1));
+  return shape;
+}
+
 // A tableau's non-zero coefficients, gathered once per run so that the step
 // loops of the tableau steppers (rk_stepper.hpp, rkmk_stepper.hpp) skip the
 // zeros without testing them and read no std::vector in the step.
@@ -86,26 +114,29 @@ struct StageTerms {
     // at run-time indices, each stage reloaded what the one before had just
     // stored, in wider loads than its stores, which the CPU cannot forward
     // (docs/performance.md, "rkmk4 at the limit").
-    template <int J, class V, class K>
+    // Pattern: the row's pattern where the caller knows it at compile time
+    // (a StageShape's row, which the row's own must be), else kAnyPattern.
+    template <int J, unsigned Pattern = kAnyPattern, class V, class K>
     [[gnu::always_inline]] void sum_first(V& out, const V& base, double h, const K& k) const {
-      first_terms<J, true>(out, &base, h, k);
+      first_terms<J, Pattern, true>(out, &base, h, k);
     }
-    template <int J, class V, class K>
+    template <int J, unsigned Pattern = kAnyPattern, class V, class K>
     [[gnu::always_inline]] void sum_first(V& out, double h, const K& k) const {
-      first_terms<J, false>(out, static_cast<const V*>(nullptr), h, k);
+      first_terms<J, Pattern, false>(out, static_cast<const V*>(nullptr), h, k);
     }
     // Stage i's sums over the stages before it: sum where i is known at
     // run time, sum_first<i> where it is a compile-time constant
-    // (std::integral_constant: a fixed step's unrolled stages).
-    template <class Index, class V, class K>
+    // (std::integral_constant: a fixed step's unrolled stages), by its row
+    // of Shape.
+    template <StageShape Shape = kRuntimeShape, class Index, class V, class K>
     [[gnu::always_inline]] void sum_before(Index /*i*/, V& out, const V& base, double h, const K& k) const {
       if constexpr (std::is_integral_v<Index>) sum(out, base, h, k);
-      else sum_first<Index::value>(out, base, h, k);
+      else sum_first<Index::value, shape_row(Shape, Index::value)>(out, base, h, k);
     }
-    template <class Index, class V, class K>
+    template <StageShape Shape = kRuntimeShape, class Index, class V, class K>
     [[gnu::always_inline]] void sum_before(Index /*i*/, V& out, double h, const K& k) const {
       if constexpr (std::is_integral_v<Index>) sum(out, h, k);
-      else sum_first<Index::value>(out, h, k);
+      else sum_first<Index::value, shape_row(Shape, Index::value)>(out, h, k);
     }
 
    private:
@@ -113,17 +144,23 @@ struct StageTerms {
     // sum_first: (base + t_0) + t_1 + ... over the non-zero terms, or
     // t_0 + t_1 + ... (0 if none) without a base, as scalar_sum adds them.
     // The row's pattern of non-zero terms (bit j: a term at stage j) picks
-    // one of the 2^J sums, each with its terms at compile time.
-    template <int J, bool Base, class V, class K>
+    // one of the 2^J sums, each with its terms at compile time; a Pattern
+    // known at compile time is that sum, with no choice.
+    template <int J, unsigned Pattern, bool Base, class V, class K>
     [[gnu::always_inline]] void first_terms(V& out, const V* base, double h, const K& k) const {
       static_assert(J <= 4, "sum_first unrolls up to four stages (2^J sums)");
       constexpr unsigned all = (1u << J) - 1u;
-      const unsigned p = pattern & all;  // the terms are at j < J: p is pattern
-      [&]<unsigned... m>(std::integer_sequence<unsigned, m...>) __attribute__((always_inline)) {
-        if (!((p == m ? (pattern_terms<m, J, Base>(out, base, h, k), true) : false) || ...))
-          pattern_terms<all, J, Base>(out, base, h, k);
+      if constexpr (Pattern != kAnyPattern) {
+        static_assert((Pattern & ~all) == 0u, "a pattern of terms beyond the first J stages");
+        pattern_terms<Pattern, J, Base>(out, base, h, k);
+      } else {
+        const unsigned p = pattern & all;  // the terms are at j < J: p is pattern
+        [&]<unsigned... m>(std::integer_sequence<unsigned, m...>) __attribute__((always_inline)) {
+          if (!((p == m ? (pattern_terms<m, J, Base>(out, base, h, k), true) : false) || ...))
+            pattern_terms<all, J, Base>(out, base, h, k);
+        }
+        (std::make_integer_sequence<unsigned, all>{});
       }
-      (std::make_integer_sequence<unsigned, all>{});
     }
     template <unsigned Pattern, int J, bool Base, class V, class K>
     [[gnu::always_inline]] void pattern_terms(V& out, const V* base, double h, const K& k) const {
@@ -210,6 +247,16 @@ struct StageTerms {
     b = Row(tableau.b_weights().data(), stages);
     if (!tableau.e().empty()) e = Row(tableau.e().data(), attempt);
     if (!tableau.e_stretched().empty()) e3 = Row(tableau.e_stretched().data(), attempt);
+  }
+
+  // The shape of a fixed step of s <= 4 stages: rows 1..s-1 and b.
+  StageShape shape(int s) const {
+    StageShape packed = 0;
+    for (int i = 1; i <= s; ++i) {
+      const Row& row = i < s ? a[static_cast<std::size_t>(i)] : b;
+      packed |= row.pattern << (4 * (i - 1));
+    }
+    return packed;
   }
 };
 

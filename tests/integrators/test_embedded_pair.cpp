@@ -7,8 +7,12 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
+#include "integrators/methods/kutta3.hpp"
+#include "integrators/methods/rk38.hpp"
+#include "integrators/methods/rk4.hpp"
 #include "integrators/stage_terms.hpp"
 #include "integrators/steppers/embedded_pair.hpp"
 #include "integrators/steppers/error_norm.hpp"
@@ -114,36 +118,49 @@ TEST(StageSums, ARowKeepsItsNonZeroWeightsAndSumsThemInOrder) {
 
 // sum_first<J> (a fixed step's unrolled stages) adds the same terms in the
 // same order as sum: bit for bit, over every pattern of zeros in a row of
-// J <= 4 terms, with and without a base; a zero's stage is never read.
+// J <= 4 terms, with and without a base, the pattern read at run time and
+// known at compile time (a StageShape's row); a zero's stage is never read.
+template <int J, unsigned Pattern>
+void expect_sum_first_is_sum_for(const double (&weights)[4]) {
+  std::vector<double> w(J, 0.0);
+  std::array<ZState, kMaxStages> k;
+  for (int j = 0; j < J; ++j) {
+    const bool term = (Pattern >> j & 1u) != 0;
+    w[static_cast<std::size_t>(j)] = term ? weights[j] : 0.0;
+    k[static_cast<std::size_t>(j)] = term ? ZState(ZState::LinSpaced(0.37 * (j + 1), 1.9 / (j + 2)))
+                                          : ZState(ZState::Constant(std::numeric_limits<double>::quiet_NaN()));
+  }
+  const StageTerms::Row row(w.data(), J);
+  const ZState base = ZState::LinSpaced(-1.3, 0.7);
+  const double h = 0.013;
+  ZState sum, first, known, sum_base, first_base, known_base;
+  row.sum(sum, h, k);
+  row.sum_first<J>(first, h, k);
+  row.sum_first<J, Pattern>(known, h, k);
+  row.sum(sum_base, base, h, k);
+  row.sum_first<J>(first_base, base, h, k);
+  row.sum_first<J, Pattern>(known_base, base, h, k);
+  for (int e = 0; e < kZSize; ++e) {
+    const std::uint64_t bits = std::bit_cast<std::uint64_t>(sum[e]);
+    const std::uint64_t bits_base = std::bit_cast<std::uint64_t>(sum_base[e]);
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(first[e]), bits) << J << " " << Pattern;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(known[e]), bits) << J << " " << Pattern;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(first_base[e]), bits_base) << J << " " << Pattern;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(known_base[e]), bits_base) << J << " " << Pattern;
+  }
+  if constexpr (Pattern == 0) {
+    EXPECT_EQ(first, ZState::Zero());
+    EXPECT_EQ(known, ZState::Zero());
+  }
+}
+
 template <int J>
 void expect_sum_first_is_sum() {
   const double weights[4] = {0.1, -2.0 / 3.0, 1.0 / 7.0, 0.3};
-  for (unsigned pattern = 0; pattern < (1u << J); ++pattern) {
-    std::vector<double> w(J, 0.0);
-    std::array<ZState, kMaxStages> k;
-    for (int j = 0; j < J; ++j) {
-      const bool term = (pattern >> j & 1u) != 0;
-      w[static_cast<std::size_t>(j)] = term ? weights[j] : 0.0;
-      k[static_cast<std::size_t>(j)] = term ? ZState(ZState::LinSpaced(0.37 * (j + 1), 1.9 / (j + 2)))
-                                            : ZState(ZState::Constant(std::numeric_limits<double>::quiet_NaN()));
-    }
-    const StageTerms::Row row(w.data(), J);
-    const ZState base = ZState::LinSpaced(-1.3, 0.7);
-    const double h = 0.013;
-    ZState sum, first, sum_base, first_base;
-    row.sum(sum, h, k);
-    row.sum_first<J>(first, h, k);
-    row.sum(sum_base, base, h, k);
-    row.sum_first<J>(first_base, base, h, k);
-    for (int e = 0; e < kZSize; ++e) {
-      EXPECT_EQ(std::bit_cast<std::uint64_t>(first[e]), std::bit_cast<std::uint64_t>(sum[e])) << J << " " << pattern;
-      EXPECT_EQ(std::bit_cast<std::uint64_t>(first_base[e]), std::bit_cast<std::uint64_t>(sum_base[e]))
-          << J << " " << pattern;
-    }
-    if (pattern == 0) {
-      EXPECT_EQ(first, ZState::Zero());
-    }
+  [&]<unsigned... pattern>(std::integer_sequence<unsigned, pattern...>) {
+    (expect_sum_first_is_sum_for<J, pattern>(weights), ...);
   }
+  (std::make_integer_sequence<unsigned, 1u << J>{});
 }
 
 TEST(StageSums, SumFirstAddsTheSameTermsAsSumBitForBitOverEveryPatternOfZeros) {
@@ -151,6 +168,24 @@ TEST(StageSums, SumFirstAddsTheSameTermsAsSumBitForBitOverEveryPatternOfZeros) {
   expect_sum_first_is_sum<2>();
   expect_sum_first_is_sum<3>();
   expect_sum_first_is_sum<4>();
+}
+
+// A fixed step's shape: rows 1..S-1 of A and b (as row S), 4 bits a row.
+TEST(StageSums, TheShapeOfATableauIsItsRowsPatternsOfNonZeroTerms) {
+  // classical RK4: each stage from the one before, b full
+  EXPECT_EQ(chain_shape(4), 0x1u | 0x2u << 4 | 0x4u << 8 | 0xFu << 12);
+  EXPECT_EQ(dense_shape(3), 0x1u | 0x3u << 4 | 0x7u << 8);
+  EXPECT_EQ(StageTerms(methods::rk4()).shape(4), chain_shape(4));
+  // Kutta's third order and the 3/8 rule: every term
+  EXPECT_EQ(StageTerms(methods::kutta3()).shape(3), dense_shape(3));
+  EXPECT_EQ(StageTerms(methods::rk38()).shape(4), dense_shape(4));
+  // the midpoint rule: b_1 = 0, neither
+  const StageShape midpoint = StageTerms(Tableau("midpoint", 2, {0, 0, 0.5, 0}, {0, 1}, {0, 0.5})).shape(2);
+  EXPECT_EQ(midpoint, 0x1u | 0x2u << 4);
+  EXPECT_NE(midpoint, chain_shape(2));
+  EXPECT_NE(midpoint, dense_shape(2));
+  EXPECT_EQ(shape_row(midpoint, 2), 0x2u);
+  EXPECT_EQ(shape_row(kRuntimeShape, 2), kAnyPattern);
 }
 
 }  // namespace

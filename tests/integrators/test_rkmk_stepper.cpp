@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,10 @@
 #include "integrators/methods/dormand_prince54.hpp"
 #include "integrators/methods/dormand_prince853.hpp"
 #include "integrators/methods/fehlberg78.hpp"
+#include "integrators/methods/heun.hpp"
+#include "integrators/methods/kutta3.hpp"
+#include "integrators/methods/rk38.hpp"
+#include "integrators/methods/rk4.hpp"
 #include "integrators/methods/verner76.hpp"
 #include "integrators/methods/verner98.hpp"
 #include "integrators/user_tableaux.hpp"
@@ -90,6 +95,47 @@ TEST(RkmkStepper, APairsAttemptGivesItsTableausFixedStepBitForBit) {
       EXPECT_EQ(run.cost.dexpinv_evals, n * (tableau.stages() - 1));
     }
   }
+}
+
+// A fixed step of known shape (stage_terms.hpp: each stage from the one
+// before, or every term) sums the same terms as one that reads the rows'
+// patterns at run time: the same states, bit for bit; a stepper given a
+// shape that is not its tableau's refuses to run.
+template <int S, StageShape Shape>
+void expect_shaped_steps_are_runtime_steps(const Tableau& tableau) {
+  SCOPED_TRACE(tableau.name());
+  const Problem& p = shipped_scene("valley-sideways");
+  const StageTerms terms(tableau);
+  ASSERT_EQ(terms.shape(S), Shape);
+  RkmkStages shaped_stages, runtime_stages;
+  const ExpCoordinates exp{DexpinvKind::exact};
+  RkmkStepper<S, ExpCoordinates, false, false, Shape> shaped(p, tableau, terms, exp, shaped_stages);
+  RkmkStepper<S, ExpCoordinates, false, false> runtime(p, tableau, terms, exp, runtime_stages);
+  const double h = 1.0 / 64;
+  FlatState y = p.y0(), y_runtime = p.y0(), next, next_runtime;
+  Cost cost, cost_runtime;
+  for (int k = 0; k < 8; ++k) {
+    shaped(y, next, k * h, h, cost);
+    runtime(y_runtime, next_runtime, k * h, h, cost_runtime);
+    ASSERT_TRUE(same_bits(next, next_runtime)) << "step " << k + 1;
+    EXPECT_NE(next, y);
+    y = next;
+    y_runtime = next_runtime;
+  }
+  EXPECT_EQ(cost.rhs_evals, 8 * S);
+}
+
+TEST(RkmkStepper, AFixedStepOfKnownShapeIsTheStepOfItsShapeReadAtRunTime) {
+  expect_shaped_steps_are_runtime_steps<2, chain_shape(2)>(methods::heun());
+  expect_shaped_steps_are_runtime_steps<3, dense_shape(3)>(methods::kutta3());
+  expect_shaped_steps_are_runtime_steps<4, chain_shape(4)>(methods::rk4());
+  expect_shaped_steps_are_runtime_steps<4, dense_shape(4)>(methods::rk38());
+  const Tableau rk38 = methods::rk38();
+  const StageTerms terms(rk38);
+  RkmkStages stages;
+  using ChainStepper = RkmkStepper<4, ExpCoordinates, false, false, chain_shape(4)>;
+  EXPECT_THROW(ChainStepper(shipped_scene("valley-sideways"), rk38, terms, ExpCoordinates{DexpinvKind::exact}, stages),
+               std::logic_error);
 }
 
 // A user tableau with an embedded pair gives flat and Lie members, fixed and

@@ -60,7 +60,9 @@ struct PairRun {
 // The one maker: the RKMK stepper of one run, handed to use (stepped_method's
 // drive, or adaptive_method's), which returns the run's result. Both choose
 // the ball's code path (General); fixed steps (Estimating = false) unroll
-// the stage loop for up to four stages, a pair chooses its dense output.
+// the stage loop for up to four stages, with the tableau's stage shape at
+// compile time where it is a chain or dense (stage_terms.hpp), a pair
+// chooses its dense output.
 template <bool Estimating, class Coordinates, class Use>
 RunResult with_rkmk_stepper(const Problem& problem, const Tableau& tableau, Coordinates map, const PairRun* pair,
                             Use&& use) {
@@ -69,11 +71,18 @@ RunResult with_rkmk_stepper(const Problem& problem, const Tableau& tableau, Coor
   const bool general = problem.model().has_inertia();
   if constexpr (!Estimating) {
     auto fixed = [&]<int S>() {
-      auto on_path = [&]<bool General>() {
-        RkmkStepper<S, Coordinates, false, General> stepper(problem, tableau, terms, map, stages);
-        return use(stepper);
+      auto shaped = [&]<StageShape Shape>() {
+        auto on_path = [&]<bool General>() {
+          RkmkStepper<S, Coordinates, false, General, Shape> stepper(problem, tableau, terms, map, stages);
+          return use(stepper);
+        };
+        return general ? on_path.template operator()<true>() : on_path.template operator()<false>();
       };
-      return general ? on_path.template operator()<true>() : on_path.template operator()<false>();
+      if constexpr (S > 0) {
+        if (terms.shape(S) == chain_shape(S)) return shaped.template operator()<chain_shape(S)>();
+        if (terms.shape(S) == dense_shape(S)) return shaped.template operator()<dense_shape(S)>();
+      }
+      return shaped.template operator()<kRuntimeShape>();
     };
     switch (terms.stages) {
       case 1: return fixed.template operator()<1>();

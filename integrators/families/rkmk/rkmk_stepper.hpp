@@ -32,6 +32,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -100,15 +101,17 @@ struct StageDerivatives {
 };
 using RkmkStages = StageDerivatives<kMaxStages>;
 
-// S stages unrolled (S = 0: any number; the pairs). Coordinates: exp and
+// S stages unrolled (S = 0: any number; the pairs), of Shape (a fixed step
+// of S <= 4 stages whose rows' patterns of zeros are known at compile time:
+// StageTerms::shape(S) is Shape) or kRuntimeShape. Coordinates: exp and
 // dexpinv, or cay and dcayinv. Dense: the pair's outputs by its dense
 // output, else clamped steps (Dense concerns the pair only). General: the
 // ball has inertia (RollingBall::has_inertia()), so that every stage's
 // evaluation is inlined on that code path, and only there the stages
 // orient an anisotropic ball (the homogeneous ball's fixed step then
 // carries none of that code: docs/performance.md, "rkmk4 at the limit").
-template <int S, class Coordinates, bool Dense = false, bool General = false>
-class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, General>> {
+template <int S, class Coordinates, bool Dense = false, bool General = false, StageShape Shape = kRuntimeShape>
+class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, General, Shape>> {
  public:
   static constexpr bool dense_output = Dense;
 
@@ -122,7 +125,11 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
         anisotropic_(problem.model().anisotropic()),
         frame_(stages),
         fsal_(tableau.fsal_stage().value_or(-1)),
-        fsal_in_attempt_(tableau.fsal_in_attempt()) {}
+        fsal_in_attempt_(tableau.fsal_in_attempt()) {
+    // a shape that is not the tableau's would sum the wrong terms
+    if constexpr (Shape != kRuntimeShape)
+      if (terms.shape(S) != Shape) throw std::logic_error("RkmkStepper: the tableau's stage shape is not Shape");
+  }
 
   // For the embedded pair: from the problem's start, with the run's
   // tolerances and output times.
@@ -266,8 +273,8 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
         (stage<false>(f, std::integral_constant<std::size_t, I + 1>{}, R, z, h, cost), ...);
       }
       (std::make_index_sequence<S - 1>{});
-      terms_.b.template sum_first<S>(u, h, f.K);
-      terms_.b.template sum_first<S>(dz, h, f.L);
+      terms_.b.template sum_first<S, shape_row(Shape, S)>(u, h, f.K);
+      terms_.b.template sum_first<S, shape_row(Shape, S)>(dz, h, f.L);
     } else {
       const int stages = Estimate ? terms_.attempt : terms_.stages;
       for (std::size_t i = 1; i < static_cast<std::size_t>(stages); ++i) stage<Estimate>(f, i, R, z, h, cost);
@@ -300,9 +307,9 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
       row.sum(dz_fsal_, h, f.L);
       Z = z + dz_fsal_;
     } else {
-      row.sum_before(i, Z, z, h, f.L);
+      row.template sum_before<Shape>(i, Z, z, h, f.L);
     }
-    row.sum_before(i, U, h, f.K);
+    row.template sum_before<Shape>(i, U, h, f.K);
     Vec3 omega;
     if (General && anisotropic_) {
       // R enters omega and G: evaluate at the stage's own orientation, the
