@@ -79,8 +79,9 @@ RunResult with_rkmk_stepper(const Problem& problem, const Tableau& tableau, Coor
         return general ? on_path.template operator()<true>() : on_path.template operator()<false>();
       };
       if constexpr (S > 0) {
-        if (terms.shape(S) == chain_shape(S)) return shaped.template operator()<chain_shape(S)>();
-        if (terms.shape(S) == dense_shape(S)) return shaped.template operator()<dense_shape(S)>();
+        const StageShape shape = terms.shape(S);
+        if (shape == chain_shape(S)) return shaped.template operator()<chain_shape(S)>();
+        if (shape == dense_shape(S)) return shaped.template operator()<dense_shape(S)>();
       }
       return shaped.template operator()<kRuntimeShape>();
     };
