@@ -163,12 +163,16 @@ class Formula {
   template <class T>
   [[gnu::always_inline]] Jet2<T> slopes(const T& x, const T& y) const {
     if constexpr (std::is_same_v<T, double>) {
-      if (native_) return run_native(native_.slopes, x, y);
-      if (tape_.usable()) return run_tape(tape_.slopes, x, y);
+      double out[6];
+      if (native_) [[likely]]
+        native_.slopes(x, y, out);
+      else slopes_off_native(x, y, out);
+      return read_out(out);
+    } else {
+      Jet2<T> j = eval(x, y);
+      j.f = T(std::nan(""));
+      return j;
     }
-    Jet2<T> j = eval(x, y);
-    j.f = T(std::nan(""));
-    return j;
   }
 
   // f(x, y) alone; bitwise equal to eval(x, y).f for double.
@@ -215,8 +219,25 @@ class Formula {
   [[gnu::always_inline]] static Jet2<double> run_native(NativeFormula::Function fn, double x, double y) {
     double out[6];
     fn(x, y, out);
+    return read_out(out);
+  }
+  [[gnu::always_inline]] static Jet2<double> read_out(const double* out) {
     const volatile double* read = out;
     return {read[0], read[1], read[2], read[3], read[4], read[5]};
+  }
+  // slopes where no native code runs (the tape, else the interpreter), its
+  // six numbers into out as the native code writes them: out of line, and
+  // through the same buffer, so that the stages' native path merges with
+  // nothing kept in registers (docs/performance.md, ninth pass)
+  [[gnu::noinline]] void slopes_off_native(double x, double y, double* out) const {
+    Jet2<double> j;
+    if (tape_.usable()) {
+      j = run_tape(tape_.slopes, x, y);
+    } else {
+      j = eval(x, y);
+      j.f = std::nan("");
+    }
+    out[0] = j.f, out[1] = j.fx, out[2] = j.fy, out[3] = j.fxx, out[4] = j.fxy, out[5] = j.fyy;
   }
   // The tape's interpreter, out of line: inlined into every stage next to
   // the native call (its 1 KB register file, libm calls and jump table),

@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -246,6 +247,31 @@ TEST(Formula, AZeroOfTheFormulasOwnNumbersTimesNaNIsNaNOnEveryPath) {
     EXPECT_EQ(f.value(4.0, 0.5), f.eval(4.0, 0.5).f) << text;
     EXPECT_TRUE(std::isfinite(f.eval(4.0, 0.5).f)) << text;
   }
+}
+
+// slopes off the native path (the tape, and the stack interpreter for a
+// formula too deep for the tape) gives eval's derivatives bit for bit and no
+// value (NaN): its out-of-line fallback writes them through the buffer the
+// native code writes.
+TEST(Formula, SlopesAreEvalsDerivativesOnTheTapeAndOnTheStackInterpreter) {
+  std::string deep = "sin(x)*y";
+  for (int i = 0; i < 20; ++i) deep = (i % 2 ? "x*(" : "y+(") + deep + ")";
+  for (const std::string& text : {std::string("0.05*sin(2*x)*cos(3*y) + 0.1*x^2"), "0.01*(" + deep + ")"}) {
+    const Formula f = Formula::parse(text);
+    ASSERT_FALSE(f.is_native()) << text;
+    for (const Point& p : std::vector<Point>{{0.3, -0.7}, {-1.9, 2.4}}) {
+      const Parts slopes = parts(f.slopes(p[0], p[1])), full = parts(f.eval(p[0], p[1]));
+      EXPECT_TRUE(std::isnan(slopes[0])) << text;
+      EXPECT_TRUE(std::isfinite(full[0])) << text;
+      for (std::size_t i = 1; i < 6; ++i) {
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(slopes[i]), std::bit_cast<std::uint64_t>(full[i]))
+            << text << " part " << i;
+        EXPECT_TRUE(std::isfinite(slopes[i])) << text << " part " << i;
+      }
+    }
+  }
+  EXPECT_TRUE(Formula::parse("0.05*sin(2*x)*cos(3*y) + 0.1*x^2").tape().usable());
+  EXPECT_FALSE(Formula::parse("0.01*(" + deep + ")").tape().usable()) << "the deep formula fits the tape";
 }
 
 struct ErrorCase {
