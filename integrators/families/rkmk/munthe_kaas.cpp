@@ -109,10 +109,12 @@ std::unique_ptr<Integrator> rkmk_integrator(Tableau tableau, std::string name, c
                                             DexpinvKind dexpinv, bool use_dense) {
   if (controller == kConstantController) {
     MethodInfo info = fixed_facts(tableau, std::move(name), dexpinv);
-    return stepped_method(std::move(info),
-                          [tableau = std::move(tableau), dexpinv](const Problem& problem, auto&& drive) {
-                            return with_rkmk_stepper<false>(problem, tableau, ExpCoordinates{dexpinv}, nullptr, drive);
-                          });
+    return stepped_method(
+        std::move(info), [tableau = std::move(tableau), dexpinv](const Problem& problem, auto&& drive) {
+          if (dexpinv == DexpinvKind::exact)
+            return with_rkmk_stepper<false>(problem, tableau, ClosedFormExpCoordinates{}, nullptr, drive);
+          return with_rkmk_stepper<false>(problem, tableau, ExpCoordinates{dexpinv}, nullptr, drive);
+        });
   }
   if (dexpinv != DexpinvKind::exact)
     throw InputError("'" + name + "': only the closed-form dexpinv has an adaptive RKMK", "controller");
@@ -126,13 +128,13 @@ std::unique_ptr<Integrator> rkmk_integrator(Tableau tableau, std::string name, c
                   .description = adaptive_description(tableau, controller, use_dense),
                   .tableau = tableau.name(),
                   .on_group = true};
-  return adaptive_method(
-      std::move(info), [tableau = std::move(tableau), use_dense](const Problem& problem, const RunOptions& options,
-                                                                 const Tolerances& tol, auto&& drive) {
-        const std::vector<double> outputs = output_times_of(problem, options);
-        const PairRun pair{tol, outputs, use_dense};
-        return with_rkmk_stepper<true>(problem, tableau, ExpCoordinates{DexpinvKind::exact}, &pair, drive);
-      });
+  return adaptive_method(std::move(info),
+                         [tableau = std::move(tableau), use_dense](const Problem& problem, const RunOptions& options,
+                                                                   const Tolerances& tol, auto&& drive) {
+                           const std::vector<double> outputs = output_times_of(problem, options);
+                           const PairRun pair{tol, outputs, use_dense};
+                           return with_rkmk_stepper<true>(problem, tableau, ClosedFormExpCoordinates{}, &pair, drive);
+                         });
 }
 
 std::unique_ptr<Integrator> rkmk_cayley_integrator(Tableau tableau, std::string name, const std::string& controller) {

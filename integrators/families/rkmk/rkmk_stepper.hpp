@@ -81,6 +81,17 @@ struct ExpCoordinates {
   [[gnu::always_inline]] Vec3 dexpinv(const Vec3& u, const Vec3& w) const { return rb::dexpinv(u, w, kind); }
 };
 
+// The same with the closed-form dexpinv known at compile time (every pair,
+// and the fixed steps of the closed form, rkmk4 among them): the stages then
+// test no kind (callgrind, rkmk4: 30 instructions a step; docs/performance.md,
+// ninth pass). The other kinds keep ExpCoordinates' test.
+struct ClosedFormExpCoordinates : ExpCoordinates {
+  ClosedFormExpCoordinates() : ExpCoordinates{DexpinvKind::exact} {}
+  [[gnu::always_inline]] Vec3 dexpinv(const Vec3& u, const Vec3& w) const {
+    return rb::dexpinv(u, w, DexpinvKind::exact);
+  }
+};
+
 // The Cayley map and its dcayinv, counted as exp and dexpinv.
 struct CayleyCoordinates {
   [[gnu::always_inline]] Mat3 exp(const Vec3& u) const { return so3_cay(u); }
