@@ -39,8 +39,8 @@ std::vector<FlatState> pair_steps(const Problem& p, const Tableau& tableau, doub
   const StageTerms terms(tableau);
   RkmkStages stages;
   const std::vector<double> outputs;
-  RkmkStepper<0, ExpCoordinates, false, General> pair(p, tableau, terms, ExpCoordinates{DexpinvKind::exact}, stages,
-                                                      Tolerances(1e-6, 1e-9), outputs);
+  RkmkStepper<0, ClosedFormExpCoordinates, false, General> pair(p, tableau, terms, ClosedFormExpCoordinates{}, stages,
+                                                                Tolerances(1e-6, 1e-9), outputs);
   std::vector<FlatState> states;
   for (int i = 0; i < n; ++i) {
     const double err = pair.try_step(i * h, h, cost);
@@ -100,7 +100,9 @@ TEST(RkmkStepper, APairsAttemptGivesItsTableausFixedStepBitForBit) {
 // A fixed step of known shape (stage_terms.hpp: each stage from the one
 // before, or every term) sums the same terms as one that reads the rows'
 // patterns at run time: the same states, bit for bit; a stepper given a
-// shape that is not its tableau's refuses to run.
+// shape that is not its tableau's refuses to run. The shaped one is the
+// registered one (the closed-form dexpinv fixed at compile time), the other
+// reads the kind at run time as well.
 template <int S, StageShape Shape>
 void expect_shaped_steps_are_runtime_steps(const Tableau& tableau) {
   SCOPED_TRACE(tableau.name());
@@ -108,9 +110,10 @@ void expect_shaped_steps_are_runtime_steps(const Tableau& tableau) {
   const StageTerms terms(tableau);
   ASSERT_EQ(terms.shape(S), Shape);
   RkmkStages shaped_stages, runtime_stages;
-  const ExpCoordinates exp{DexpinvKind::exact};
-  RkmkStepper<S, ExpCoordinates, false, false, Shape> shaped(p, tableau, terms, exp, shaped_stages);
-  RkmkStepper<S, ExpCoordinates, false, false> runtime(p, tableau, terms, exp, runtime_stages);
+  RkmkStepper<S, ClosedFormExpCoordinates, false, false, Shape> shaped(p, tableau, terms, ClosedFormExpCoordinates{},
+                                                                       shaped_stages);
+  RkmkStepper<S, ExpCoordinates, false, false> runtime(p, tableau, terms, ExpCoordinates{DexpinvKind::exact},
+                                                       runtime_stages);
   const double h = 1.0 / 64;
   FlatState y = p.y0(), y_runtime = p.y0(), next, next_runtime;
   Cost cost, cost_runtime;
@@ -136,6 +139,25 @@ TEST(RkmkStepper, AFixedStepOfKnownShapeIsTheStepOfItsShapeReadAtRunTime) {
   using ChainStepper = RkmkStepper<4, ExpCoordinates, false, false, chain_shape(4)>;
   EXPECT_THROW(ChainStepper(shipped_scene("valley-sideways"), rk38, terms, ExpCoordinates{DexpinvKind::exact}, stages),
                std::logic_error);
+}
+
+// The comparison above tells dexpinv's kinds apart: the truncated series read
+// at run time steps to other states than the closed form.
+TEST(RkmkStepper, TheTruncatedDexpinvIsNotTheClosedFormFixedAtCompileTime) {
+  const Problem& p = shipped_scene("valley-sideways");
+  const Tableau rk4 = methods::rk4();
+  const StageTerms terms(rk4);
+  RkmkStages closed_stages, truncated_stages;
+  RkmkStepper<4, ClosedFormExpCoordinates, false, false> closed(p, rk4, terms, ClosedFormExpCoordinates{},
+                                                                closed_stages);
+  RkmkStepper<4, ExpCoordinates, false, false> truncated(p, rk4, terms, ExpCoordinates{DexpinvKind::truncated},
+                                                         truncated_stages);
+  FlatState next, next_truncated;
+  Cost cost;
+  closed(p.y0(), next, 0.0, 1.0 / 64, cost);
+  truncated(p.y0(), next_truncated, 0.0, 1.0 / 64, cost);
+  EXPECT_FALSE(same_bits(next, next_truncated));
+  EXPECT_LT((next - next_truncated).norm(), 1e-6);  // the kinds differ at O(|u|^5) only
 }
 
 // A user tableau with an embedded pair gives flat and Lie members, fixed and
