@@ -138,6 +138,13 @@ double dexpinv_coefficient_wide(double t2);  // so3.cpp
   return dexpinv_coefficient_wide(t2);
 }
 
+// |u|^2 as x^2 + y^2 + z^2, summed in that order: dexpinv's t^2, and the
+// RKMK stages' chart-edge test (rkmk_stepper.hpp), which is written with it
+// so that a stage forms it once.
+[[gnu::always_inline]] inline double squared_angle(const Vec3& u) {
+  return u.x() * u.x() + u.y() * u.y() + u.z() * u.z();
+}
+
 // dexpinv_u(w) = w - 1/2 u x w + (1/t^2)(1 - (t/2) cot(t/2)) u x (u x w),
 // t = |u| (dexpinv_coefficient). For |u| >= kDexpinvMaxAngle the exact form
 // is NaN, never a wrong number: a fixed-step RKMK run ends "chart-limit" at
@@ -148,7 +155,7 @@ double dexpinv_coefficient_wide(double t2);  // so3.cpp
   const double u0 = u.x(), u1 = u.y(), u2 = u.z();
   const double uw0 = u1 * w.z() - u2 * w.y(), uw1 = u2 * w.x() - u0 * w.z(), uw2 = u0 * w.y() - u1 * w.x();
   const double uuw0 = u1 * uw2 - u2 * uw1, uuw1 = u2 * uw0 - u0 * uw2, uuw2 = u0 * uw1 - u1 * uw0;
-  const double c = kind == DexpinvKind::exact       ? dexpinv_coefficient(u0 * u0 + u1 * u1 + u2 * u2)
+  const double c = kind == DexpinvKind::exact       ? dexpinv_coefficient(squared_angle(u))
                    : kind == DexpinvKind::truncated ? 1.0 / 12.0
                                                     : -1.0 / 12.0;
   return {w.x() - 0.5 * uw0 + c * uuw0, w.y() - 0.5 * uw1 + c * uuw1, w.z() - 0.5 * uw2 + c * uuw2};

@@ -73,12 +73,12 @@ struct ExpCoordinates {
   // Whether check_chart might throw at this stage: a bound a little below
   // the edge (every |u| >= kDexpinvMaxAngle passes it), tested where u is
   // known, so that the exact test runs only near the edge. |u|^2 is
-  // written as dexpinv writes it, so that GCC forms it once for both
-  // (Eigen's packed squaredNorm was formed again: rkmk4, 21 instructions a
-  // step; docs/performance.md, tenth pass).
+  // dexpinv's (squared_angle), so that GCC forms it once for both (Eigen's
+  // packed squaredNorm was formed again: rkmk4, 21 instructions a step;
+  // docs/performance.md, tenth pass).
   [[gnu::always_inline]] bool near_chart_edge(const Vec3& u) const {
     constexpr double bound = kDexpinvMaxAngle * (1.0 - 1e-9);
-    return u.x() * u.x() + u.y() * u.y() + u.z() * u.z() >= bound * bound;
+    return squared_angle(u) >= bound * bound;
   }
   [[gnu::always_inline]] Mat3 exp(const Vec3& u) const { return so3_exp(u); }
   [[gnu::always_inline]] Vec3 dexpinv(const Vec3& u, const Vec3& w) const { return rb::dexpinv(u, w, kind); }
