@@ -52,3 +52,13 @@ if(NOT RB_SANITIZE)
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check-format.sh
            WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
 endif()
+
+# scripts/same-results.py (docs/performance.md, "Measuring a change"): a build
+# against itself, stand-ins for a changed build, and reports; once, in the
+# release build, as it tests the script rather than the C++
+if(NOT RB_SANITIZE)
+  add_test(NAME scripts.same_results
+           COMMAND ${RB_PYTHON3} -m unittest discover -s tests/scripts -t .
+           WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
+  set_tests_properties(scripts.same_results PROPERTIES ENVIRONMENT "RB_ROLLBENCH=$<TARGET_FILE:rollbench>")
+endif()

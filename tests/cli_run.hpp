@@ -8,7 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <system_error>
 
 namespace rb::testing {
 
@@ -17,9 +19,35 @@ struct CliOutcome {
   std::string out, err;
 };
 
+// The test process's own folder in the temporary folder (mkdtemp), made on
+// first use and removed with what the tests wrote there when the process
+// exits: each test leaves its outputs behind otherwise, some 160 files in
+// /tmp a run of the suite. Removed only by the process that made it, so that
+// a forked child's exit does not take it away from under its parent.
+class CliTempFolder {
+ public:
+  CliTempFolder() : owner_(::getpid()) {
+    std::string name = (std::filesystem::temp_directory_path() / "rb-cli-run-XXXXXX").string();
+    if (!::mkdtemp(name.data())) throw std::runtime_error("cannot make a folder like " + name);
+    path_ = name;
+  }
+  ~CliTempFolder() {
+    std::error_code ignored;
+    if (::getpid() == owner_) std::filesystem::remove_all(path_, ignored);
+  }
+  CliTempFolder(const CliTempFolder&) = delete;
+  CliTempFolder& operator=(const CliTempFolder&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  pid_t owner_;
+  std::filesystem::path path_;
+};
+
 // A path in the temporary folder, unique to this test process.
 inline std::filesystem::path cli_temp_file(const std::string& name) {
-  return std::filesystem::temp_directory_path() / ("rb-cli-run-" + std::to_string(::getpid()) + "-" + name);
+  static const CliTempFolder folder;
+  return folder.path() / name;
 }
 
 inline std::string slurp(const std::filesystem::path& path) {

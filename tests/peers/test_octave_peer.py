@@ -100,17 +100,18 @@ class OctavePeerScored(unittest.TestCase):
 
 class OctavePeerInput(unittest.TestCase):
     def test_a_bad_scene_exits_2_naming_the_file(self):
-        r = subprocess.run(["/usr/bin/python3", "-m", "analysis.peers.octave_peer", "--library",
-                            problem_lib.DEFAULT_LIBRARY, "--scene", "/nonexistent/scene.json", "--out",
-                            tempfile.mkdtemp()], capture_output=True, text=True, cwd=ROOT)
+        with tempfile.TemporaryDirectory() as out:
+            r = subprocess.run(["/usr/bin/python3", "-m", "analysis.peers.octave_peer", "--library",
+                                problem_lib.DEFAULT_LIBRARY, "--scene", "/nonexistent/scene.json", "--out", out],
+                               capture_output=True, text=True, cwd=ROOT)
         self.assertEqual(r.returncode, 2, r.stderr)
         self.assertTrue(r.stderr.startswith("octave_peer: "), r.stderr)
         self.assertIn("/nonexistent/scene.json", r.stderr)
 
     def test_an_unknown_method_is_refused(self):
-        r = subprocess.run(["/usr/bin/python3", "-m", "analysis.peers.octave_peer", "--scene", "plane",
-                            "--methods", "ode113", "--out", tempfile.mkdtemp()], capture_output=True, text=True,
-                           cwd=ROOT)
+        with tempfile.TemporaryDirectory() as out:
+            r = subprocess.run(["/usr/bin/python3", "-m", "analysis.peers.octave_peer", "--scene", "plane",
+                                "--methods", "ode113", "--out", out], capture_output=True, text=True, cwd=ROOT)
         self.assertEqual(r.returncode, 2)
         self.assertIn("unknown method 'ode113'; Octave's are ode45, ode23, ode15s", r.stderr)
 
