@@ -17,7 +17,7 @@ namespace rb {
 // A and b as row S, 4 bits a row (row i at bits 4 (i - 1)); S <= 4. A step
 // of known shape sums each row by its own pattern, with no choice among
 // the 2^J sums of StageTerms::Row::sum_first at every stage (callgrind,
-// rkmk4: 3142 -> 3085 instructions a step, docs/performance.md, seventh
+// rkmk4: 3142 -> 3085 instructions a step, docs/performance-history.md, seventh
 // pass).
 // kRuntimeShape: the patterns are read at run time.
 using StageShape = unsigned;
@@ -113,7 +113,7 @@ struct StageTerms {
     // that the stages' derivatives stay in registers. Summed through memory
     // at run-time indices, each stage reloaded what the one before had just
     // stored, in wider loads than its stores, which the CPU cannot forward
-    // (docs/performance.md, "rkmk4 at the limit").
+    // (docs/performance-history.md, "rkmk4 at the limit").
     // Pattern: the row's pattern where the caller knows it at compile time
     // (a StageShape's row, which the row's own must be), else kAnyPattern.
     template <int J, unsigned Pattern = kAnyPattern, class V, class K>

@@ -214,7 +214,7 @@ class Formula {
   // The six numbers are read one by one (volatile): the compiled code
   // stores them one by one, and a caller that read two at once (GCC pairs
   // fx and fy for the unit normal) waited for the stores to reach the cache
-  // instead of taking them from the store queue (docs/performance.md,
+  // instead of taking them from the store queue (docs/performance-history.md,
   // "rkmk4 at the limit").
   [[gnu::always_inline]] static Jet2<double> run_native(NativeFormula::Function fn, double x, double y) {
     double out[6];
@@ -228,7 +228,7 @@ class Formula {
   // slopes where no native code runs (the tape, else the interpreter), its
   // six numbers into out as the native code writes them: out of line, and
   // through the same buffer, so that the stages' native path merges with
-  // nothing kept in registers (docs/performance.md, ninth pass)
+  // nothing kept in registers (docs/performance-history.md, ninth pass)
   [[gnu::noinline]] void slopes_off_native(double x, double y, double* out) const {
     Jet2<double> j;
     if (tape_.usable()) {
@@ -241,7 +241,7 @@ class Formula {
   }
   // The tape's interpreter, out of line: inlined into every stage next to
   // the native call (its 1 KB register file, libm calls and jump table),
-  // it made the stages of native landscapes slower (docs/performance.md,
+  // it made the stages of native landscapes slower (docs/performance-history.md,
   // "rkmk4 at the limit", fifth pass).
   [[gnu::noinline]] static Jet2<double> run_tape(const TapeProgram& program, double x, double y) {
     return program.run(x, y);

@@ -153,7 +153,7 @@ class RollingBall {
   // ball with inertia's evaluation inlined into its stages as well, the
   // kinematics in registers instead of an out-of-line call (callgrind, a
   // stage of rkmk-verner7-adaptive on chaplygin-bumpy-long: see
-  // docs/performance.md).
+  // docs/performance-history.md).
   template <bool General>
   [[gnu::always_inline]] void lie_rhs_on_path(const Mat3& R, const double* z, double* omega, double* dz,
                                               ModelMargins& margins) const {

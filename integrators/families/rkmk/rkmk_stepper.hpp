@@ -75,7 +75,7 @@ struct ExpCoordinates {
   // known, so that the exact test runs only near the edge. |u|^2 is
   // dexpinv's (squared_angle), so that GCC forms it once for both (Eigen's
   // packed squaredNorm was formed again: rkmk4, 21 instructions a step;
-  // docs/performance.md, tenth pass).
+  // docs/performance-history.md, tenth pass).
   [[gnu::always_inline]] bool near_chart_edge(const Vec3& u) const {
     constexpr double bound = kDexpinvMaxAngle * (1.0 - 1e-9);
     return squared_angle(u) >= bound * bound;
@@ -86,7 +86,7 @@ struct ExpCoordinates {
 
 // The same with the closed-form dexpinv known at compile time (every pair,
 // and the fixed steps of the closed form, rkmk4 among them): the stages then
-// test no kind (callgrind, rkmk4: 30 instructions a step; docs/performance.md,
+// test no kind (callgrind, rkmk4: 30 instructions a step; docs/performance-history.md,
 // ninth pass). The other kinds keep ExpCoordinates' test.
 struct ClosedFormExpCoordinates : ExpCoordinates {
   ClosedFormExpCoordinates() : ExpCoordinates{DexpinvKind::exact} {}
@@ -123,7 +123,7 @@ using RkmkStages = StageDerivatives<kMaxStages>;
 // ball has inertia (RollingBall::has_inertia()), so that every stage's
 // evaluation is inlined on that code path, and only there the stages
 // orient an anisotropic ball (the homogeneous ball's fixed step then
-// carries none of that code: docs/performance.md, "rkmk4 at the limit").
+// carries none of that code: docs/performance-history.md, "rkmk4 at the limit").
 template <int S, class Coordinates, bool Dense = false, bool General = false, StageShape Shape = kRuntimeShape>
 class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, General, Shape>> {
  public:
@@ -163,7 +163,7 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
   // Run only by drive_fixed_step, which never reads Cost::watch.near: its
   // stages skip that test (Cost::note). Every stage's validity margins are
   // noted in cost. Inlined into the driver's loop: called once a step, it
-  // ran about a twentieth slower (docs/performance.md, "rkmk4 at the limit",
+  // ran about a twentieth slower (docs/performance-history.md, "rkmk4 at the limit",
   // fifth pass).
   [[gnu::always_inline]] void operator()(const FlatState& y, FlatState& next, double /*t*/, double h, Cost& cost) {
     if constexpr (S > 0) {
@@ -344,7 +344,7 @@ class RkmkStepper : public EmbeddedPair<RkmkStepper<S, Coordinates, Dense, Gener
     if constexpr (!Estimate) {
       // tested first on U, known when the stage starts, not on K, its last
       // number: a branch on K held back everything after it (a tenth of
-      // rkmk4's step; docs/performance.md, "rkmk4 at the limit")
+      // rkmk4's step; docs/performance-history.md, "rkmk4 at the limit")
       if (map_.near_chart_edge(U)) [[unlikely]]
         if (!std::isfinite(f.K[i].x())) map_.check_chart(U.norm());
     }
