@@ -16,7 +16,7 @@ The second form compares two reports of `rollbench run` (the same preset before 
 bit for bit, the timings (every `wall_s`), the report's creation time, its commit and the machine's state aside.
 
 Prints each difference and a count; exit status 0 when everything is the same, 1 when something differs, 2 for
-bad arguments or a binary or report that cannot be read."""
+bad arguments, a binary that cannot be run or a report that cannot be read (analysis/report.py's checks)."""
 import argparse
 import concurrent.futures
 import json
@@ -25,6 +25,11 @@ import re
 import subprocess
 import sys
 import tempfile
+
+if __package__ in (None, ""):
+    sys.path[0] = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+from analysis import report as rp  # noqa: E402
 
 SCENES = "valley-sideways,bumpy-long,chaplygin-bumpy-long,saddle,paraboloid-perturbed,gaussian-hills"
 SETTINGS = {"fixed": (["--h", "0.01"], ["--h", "0.002"]),
@@ -136,16 +141,6 @@ def compare_binaries(args):
     return 1 if differ else 0
 
 
-def load_report(path):
-    try:
-        with open(path, encoding="utf-8") as f:
-            return json.load(f)
-    except OSError as e:
-        raise Unreadable(f"{path}: {e.strerror}") from e
-    except ValueError as e:
-        raise Unreadable(f"{path}: not JSON: {e}") from e
-
-
 def same_value(a, b):
     """Bit for bit: a float's repr is unique to its bits (so -0.0 is not 0.0, and NaN is NaN); 1 is not 1.0."""
     return type(a) is type(b) and (repr(a) == repr(b) if isinstance(a, float) else a == b)
@@ -173,8 +168,8 @@ def report_differences(a, b, path=""):
 
 def compare_reports(paths):
     try:
-        a, b = (load_report(p) for p in paths)
-    except Unreadable as e:
+        a, b = (rp.load(p) for p in paths)
+    except rp.ReportError as e:
         print(f"same-results: {e}", file=sys.stderr)
         return 2
     found = list(report_differences(a, b))
@@ -182,7 +177,7 @@ def compare_reports(paths):
         print(f"different: {line}")
     if len(found) > SHOWN:
         print(f"... and {len(found) - SHOWN} more")
-    runs = len(a.get("runs", [])) if isinstance(a, dict) else 0
+    runs = len(a.get("runs") or [])
     print(f"{paths[0]} and {paths[1]} ({runs} runs): "
           + (f"{len(found)} values different" if found else "the same, timings aside"))
     return 1 if found else 0

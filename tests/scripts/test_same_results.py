@@ -82,12 +82,14 @@ class Reports(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
         self.addCleanup(self.tmp.cleanup)
+        run = {"scene": "plane", "family": "rk", "adaptive": False, "status": "ok", "h": 0.01}
         self.base = {"schema": "rollbench.report/2", "created": "2026-12-06T18:59:01Z", "git": "abc",
                      "machine": {"load": [0.5, 0.4, 0.3]},
-                     "runs": [{"integrator": "rk4", "error": 1.25e-7, "drift": -0.0, "steps": 100,
-                               "wall_s": {"median": 0.01, "samples": [0.01, 0.011]}},
-                              {"integrator": "rkmk4", "error": float("nan"), "steps": 100,
-                               "wall_s": {"median": 0.02, "samples": [0.02]}}]}
+                     "error_components": [{"name": "contact", "label": "contact", "unit": "m"}],
+                     "runs": [dict(run, integrator="rk4", error=1.25e-7, drift=-0.0, steps=100,
+                                   wall_s={"median": 0.01, "samples": [0.01, 0.011]}),
+                              dict(run, integrator="rkmk4", error=float("nan"), steps=100,
+                                   wall_s={"median": 0.02, "samples": [0.02]})]}
 
     def compare(self, changed):
         paths = []
@@ -122,7 +124,7 @@ class Reports(unittest.TestCase):
 
     def test_a_run_more_or_a_key_less_is_a_difference(self):
         b = self.changed()
-        b["runs"].append({"integrator": "euler"})
+        b["runs"].append(dict(b["runs"][0], integrator="euler"))
         del b["runs"][0]["steps"]
         r = self.compare(b)
         self.assertEqual(r.returncode, 1)
@@ -135,7 +137,12 @@ class Reports(unittest.TestCase):
             f.write("{")
         r = same_results("--reports", bad, bad)
         self.assertEqual(r.returncode, 2)
-        self.assertTrue(r.stderr.startswith(f"same-results: {bad}: not JSON: "), r.stderr)
+        self.assertTrue(r.stderr.startswith(f"same-results: '{bad}' is not JSON: "), r.stderr)
+        with open(bad, "w") as f:
+            json.dump({"name": "plane", "landscape": "0"}, f)  # a scene, not a report
+        r = same_results("--reports", bad, bad)
+        self.assertEqual(r.returncode, 2)
+        self.assertEqual(r.stderr, f"same-results: {bad}: missing key 'schema' (expected \"rollbench.report/2\")\n")
 
 
 if __name__ == "__main__":
