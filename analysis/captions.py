@@ -8,7 +8,8 @@ PER_SCENE = (
     ("work-precision-best-", "Accuracy against cost on {scene}, one line per family (its method with the lowest "
      "cost over the family's accuracy range): lower left is better, and the dotted lines are the accuracies the "
      "summary's cost tables read."),
-    ("work-precision-", "Accuracy against wall time (left) and right-hand-side evaluations (right) on {scene}, "
+    ("work-precision-", "Accuracy against wall time (left) and rhs-equivalents (right: evaluations of F, an "
+     "implicit method's Jacobians and Newton passes included) on {scene}, "
      "every method: lower left is better; hollow markers are adaptive methods."),
     ("convergence-", "Each error component the report lists (a panel each) against step size on {scene}, "
      "log–log: a line parallel to its dashed guide has its declared order, and the legend gives each method's "
@@ -34,8 +35,11 @@ WHOLE = {
                          "against |ω0|/Ω, the ball's rotation rate over the bowl's frequency, with the fitted line, "
                          "the crossover x* where it is 1 (shaded: its 95 % interval) and the held-out scenes "
                          "(hollow: predicted wrong).",
-    "stability.png": "Largest stable step per fixed-step method and scene (left; longer bars are more robust) "
-                     "and how each method's runs ended (right; grey is ok, colours are the failures).",
+    "stability.png": "Per fixed-step method and scene (left): the drift-limited step h*(T) at each horizon (one "
+                     "fill each: the largest step whose run to T keeps the energy error and the rotation defect "
+                     "within their bounds) and the blow-up step (red bar: the smallest step whose run stops, "
+                     "passes a blow-up bound or grows exponentially); how each method's runs ended (right; grey "
+                     "is ok, colours are the failures).",
     "scenes.png": "Each scene's landscape as shaded height contours, with the contact point's path where a "
                   "trajectory was given.",
     "ball-deforms.png": "The ball as each method's R maps the unit sphere, at a few times: a sphere means R is "

@@ -19,9 +19,13 @@ which that test can reach 0.01: its smallest p is 2 / 2^n) and the median ratio 
 more than 5 %. So a uniform slowdown of one method is found at 3 repeats,
 where no single run's test can see it.
 Reports whose runs are not the same measurement are refused (exit 2),
-naming both values: a scene's end time, the output grid (dt_out) or the
-error grid (error_dt) differ. A different step or tolerance ladder is
-stated (runs only in one report), not refused.
+naming both values: their runs are of other scenes, no run is in both, or
+a scene's end time, the output grid (dt_out) or the error grid (error_dt)
+differ. A different step or tolerance ladder is stated (runs only in one
+report), not refused. A report that does not read (analysis/report.py's
+checks: a key of the wrong type or range, a scene name that is not a
+file name, JSON nested deeper than 64 levels, not UTF-8, over 1 GiB, not a
+regular file) is refused the same way, naming the file and the key.
 Errors and drift are deterministic: a relative change over 5 % counts,
 except between values that both sit at rounding level. Prints a table of
 the changes (every row with --all); exit status 0 (2 for an unreadable
@@ -39,6 +43,7 @@ if __package__ in (None, ""):
     sys.path[0] = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 from analysis import report as rp  # noqa: E402
+from analysis import safe_files  # noqa: E402
 
 ALPHA = 0.01
 TIME_RATIO = 0.05   # median change that matters
@@ -120,11 +125,13 @@ def pooled_time_changes(rows):
         ma, mb = row["time"]
         if not (math.isfinite(ma) and math.isfinite(mb)) or ma <= 0 or mb <= 0:
             continue
-        by_method.setdefault(row["key"][1], []).append(math.log(mb / ma))
+        q = mb / ma  # of two extreme times (a hostile report's) it leaves the double's range: a difference of logs
+        by_method.setdefault(row["key"][1], []).append(math.log(q) if 0 < q < math.inf else math.log(mb) - math.log(ma))
     out = {}
     for name, logs in by_method.items():
         logs = np.array(logs)
-        ratio = float(math.exp(np.median(logs)))
+        with np.errstate(over="ignore"):
+            ratio = float(np.exp(np.median(logs)))
         if logs.size < POOLED_MIN_RUNS or not np.any(logs != 0.0):
             p = 1.0  # too few runs to conclude, or every ratio exactly 1
         else:
@@ -201,9 +208,21 @@ def _end_times(report):
     return out
 
 
+def _names(names, shown=5):
+    names = sorted(names)
+    return ", ".join(names[:shown]) + (f" and {len(names) - shown} more" if len(names) > shown else "")
+
+
 def check_comparable(a, b, name_a="A", name_b="B"):
-    """Raise Mismatch naming both values when a scene's end time or the output or error grid differ."""
+    """Raise Mismatch naming both values when the scenes, a scene's end time or the output or error grid differ,
+    or when no run is in both reports."""
     problems = []
+    sa, sb = {r.scene for r in rp.runs(a)}, {r.scene for r in rp.runs(b)}
+    if sa != sb:
+        only = [f"only in {name}: {_names(s)}" for name, s in ((name_a, sa - sb), (name_b, sb - sa)) if s]
+        problems.append(f"their runs are of other scenes ({'; '.join(only)})")
+    elif not {run_key(r) for r in rp.runs(a)} & {run_key(r) for r in rp.runs(b)}:
+        problems.append("no run (scene, integrator and step or tolerance) is in both")
     ta, tb = _end_times(a), _end_times(b)
     for scene in ta:
         if scene in tb and ta[scene] != tb[scene]:
@@ -328,19 +347,24 @@ def main(argv=None):
     parser.add_argument("--out", help="also write the table to this Markdown file")
     parser.add_argument("--all", action="store_true", help="list every run, not only the changes")
     args = parser.parse_args(argv)
+    out = None
     try:
+        # the output's folder opened and the target checked first, under the path rule (analysis/safe_files.py)
+        out = safe_files.OutputFile(args.out) if args.out else None
         a, b = rp.load(args.a), rp.load(args.b)
         check_comparable(a, b, args.a, args.b)
-    except (rp.ReportError, Mismatch) as e:
+        result = compare_reports(a, b)
+        result["note"] = ladder_note(a, b, args.a, args.b)
+        text = format_markdown(result, args.a, args.b, args.all)
+        print(text)
+        if out:
+            out.write(text)
+    except (rp.ReportError, Mismatch, safe_files.OutputFileError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
-    result = compare_reports(a, b)
-    result["note"] = ladder_note(a, b, args.a, args.b)
-    text = format_markdown(result, args.a, args.b, args.all)
-    print(text)
-    if args.out:
-        with open(args.out, "w", encoding="utf-8") as f:
-            f.write(text)
+    finally:
+        if out:
+            out.close()
     return 0
 
 

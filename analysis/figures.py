@@ -19,6 +19,9 @@ from analysis import report as rp  # noqa: E402
 
 FLOOR_COLOUR = "#bbbbbb"
 BLOW_UP = 1e4  # drift above this is a blow-up; the axes stop there
+# values beyond this are not drawn: a log axes' margins around 1e300 leave the double's range (a report may hold
+# any finite number, analysis/report_schema.py)
+PLOT_MAX = 1e200
 GUIDE = {"color": "#888888", "linewidth": 0.8, "linestyle": (0, (4, 3)), "alpha": 0.6, "zorder": 0.5}
 
 
@@ -49,9 +52,11 @@ def empty_log_axes(ax, message):
 
 
 def positive(xs, ys):
-    """Pairs with both coordinates finite and positive (what a log-log axes can show)."""
+    """Pairs with both coordinates positive and at most PLOT_MAX (what a log-log axes can show)."""
     xs, ys = np.asarray(xs, float), np.asarray(ys, float)
-    keep = np.isfinite(xs) & np.isfinite(ys) & (xs > 0) & (ys > 0)
+    if xs.shape != ys.shape:  # a series the run lacks (an integral it did not record): nothing to draw
+        return np.array([]), np.array([])
+    keep = (xs > 0) & (ys > 0) & (xs <= PLOT_MAX) & (ys <= PLOT_MAX)  # NaN compares false: left out too
     return xs[keep], ys[keep]
 
 
@@ -60,7 +65,7 @@ def shade_floor(ax, floor, side="right"):
 
     The label goes on the side where the most accurate points are not.
     """
-    if not floor or not math.isfinite(floor) or floor <= 0:
+    if not floor or not 0 < floor <= PLOT_MAX:
         return
     lo, hi = ax.get_ylim()
     lo = min(lo, floor / 10)
@@ -212,9 +217,24 @@ def _drift_series(ax, entries, key, palette):
                      var="t", at="right")
 
 
+def energy_key(entry, on_group, flat):
+    """The key of the energy error at the nearest rotation, H(polar(R), v, α), where the entry has it, else the
+    flat one's (reports that predate it): the flat H hides R's drift off SO(3)
+    (docs/model.md#how-the-energy-error-is-measured)."""
+    return on_group if on_group in entry else flat
+
+
+def run_cost(r):
+    """A sweep run's cost in rhs-equivalents (`rhs_evals` in older reports): the analysis's cost axis."""
+    value = rp.num(r.entry.get("rhs_equivalents"))
+    return value if math.isfinite(value) else r.rhs_evals
+
+
 def drift(report, scene, palette):
-    """Energy error and rotation defect against time (drift runs) and against cost (sweep runs)."""
-    series = [d for d in rp.drift_runs(report, scene) if d.get("t")]
+    """Energy error (at the nearest rotation where recorded) and rotation defect against time (drift runs) and
+    against cost in rhs-equivalents (sweep runs)."""
+    series = [dict(d, energy_error=d[energy_key(d, "energy_error_on_group", "energy_error")])
+              for d in rp.drift_runs(report, scene) if d.get("t")]
     runs = [r for r in rp.runs(report, scene) if r.entry.get("drift")]
     if not series and not runs:
         raise NothingToPlot(f"no drift runs and no runs with drift for scene {scene}")
@@ -225,7 +245,7 @@ def drift(report, scene, palette):
     if series:
         h = sorted({rp.num(d.get("h")) for d in series})
         for ax, key, label, short in (
-                (axes[row, 0], "energy_error", "energy error |H − H$_0$| (J)", "energy error"),
+                (axes[row, 0], "energy_error", "energy error |H(polar R) − H$_0$| (J)", "energy error"),
                 (axes[row, 1], "rotation_defect", "rotation defect ‖R$^T$R − I‖$_F$", "rotation defect")):
             _drift_series(ax, series, key, palette)
             ax.set_xlabel("time t (s)")
@@ -237,18 +257,21 @@ def drift(report, scene, palette):
         row += 1
     if runs:
         of = rp.by_integrator(runs)
-        for ax, key, label in ((axes[row, 0], "energy", "largest energy error max|H − H$_0$| (J)"),
+        for ax, key, label in ((axes[row, 0], "energy", "largest energy error max|H(polar R) − H$_0$| (J)"),
                                (axes[row, 1], "rotation_defect", "largest rotation defect ‖R$^T$R − I‖$_F$")):
+            def value(r, key=key):
+                d = r.entry["drift"]
+                return rp.num(d.get(energy_key(d, "energy_on_group", "energy") if key == "energy" else key))
             for name, theirs in of.items():
-                mine = sorted((r for r in theirs if rp.ok(r)), key=lambda r: r.rhs_evals)
-                x, y = positive([r.rhs_evals for r in mine], [rp.num(r.entry["drift"].get(key)) for r in mine])
+                mine = sorted((r for r in theirs if rp.ok(r)), key=run_cost)
+                x, y = positive([run_cost(r) for r in mine], [value(r) for r in mine])
                 style = palette.style(name)
                 adaptive = theirs[0].adaptive
                 ax.plot(x, y, label=name, markersize=4, linewidth=1.2,
                         markerfacecolor="none" if adaptive else style["color"], **style)
                 # failed runs keep their drift up to the stop: crosses, off the lines
                 failed = [r for r in theirs if not rp.ok(r)]
-                fx, fy = positive([r.rhs_evals for r in failed], [rp.num(r.entry["drift"].get(key)) for r in failed])
+                fx, fy = positive([run_cost(r) for r in failed], [value(r) for r in failed])
                 if fx.size:
                     ax.plot(fx, fy, linestyle="none", marker="x", color=style["color"], markersize=7,
                             label="_failed")
@@ -256,7 +279,7 @@ def drift(report, scene, palette):
             ax.set_yscale("log")
             if not empty_log_axes(ax, "no run with a positive value"):
                 cap_top(ax, [y for line in ax.lines for y in line.get_ydata()], "runs")
-            ax.set_xlabel("right-hand-side evaluations")
+            ax.set_xlabel("rhs-equivalents (Jacobians, Newton passes included)")
             ax.set_ylabel(label)
             ax.grid(True, which="major", alpha=0.3)
             ax.set_title(f"{scene}: {'energy error' if key == 'energy' else 'rotation defect'} "

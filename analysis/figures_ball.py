@@ -60,7 +60,10 @@ def ball_deforms(trajectory_dir, methods=("euler", "rk4", "rkmk4")):
     colours = {"euler": "#1f77b4", "rk4": "#17becf", "rkmk4": "#d62728"}
     rows = []
     for method, label, path in found:
-        t, r = rotations(path)
+        try:
+            t, r = rotations(path)
+        except (ValueError, StopIteration) as e:  # safe_files.InputFileError included: a FIFO, /dev/zero
+            raise NothingToPlot(f"cannot read {path}: {e or 'no header'}") from None
         picks = np.unique(np.linspace(0, t.size - 1, TIMES).round().astype(int))
         rows.append((method, label, t, r, picks))
     # one scale for every panel, so that a ball that grows or shrinks is seen to

@@ -1,12 +1,13 @@
 """Figures over all scenes: stability, the scenes themselves, ns per step."""
 import csv
+import io
 import json
 import math
 import os
 
 import numpy as np
 
-from analysis import landscape
+from analysis import landscape, safe_files, stability as stab
 from analysis import report as rp
 from analysis import style as st
 from analysis.figures import NothingToPlot, new_figure
@@ -61,6 +62,70 @@ def _largest_stable_panel(ax, entries, palette):
     ax.text(none_x, -0.6, "none", ha="center", va="bottom", fontsize=7, color="#666666")
 
 
+# one fill per horizon of the drift-limited step, shortest first (more horizons: the last fill again)
+HORIZON_FILLS = ["full", "left", "none"]
+BLOW_UP_COLOUR = "#b2182b"
+
+
+def _limits_panel(ax, entries, palette):
+    """Per method and scene: the drift-limited step h*(T) at each horizon (one fill each) and the blow-up step (a
+    bar; one per horizon where it moves), joined by a line (analysis/stability.py)."""
+    names = rp.integrators(entries)
+    scenes = rp.unique(e["scene"] for e in entries)
+    times = stab.horizons(entries)
+    steps = []
+    for e in entries:
+        blow, drift = stab.limits(e) or ([], [])
+        steps += [rp.num(x.get("h")) for x in blow + drift] + rp.tested_h(e)
+    steps = [h for h in steps if math.isfinite(h) and h > 0]
+    smallest = min(steps or [1e-3])
+    none_x = smallest / 4  # where "no step keeps the bounds" is drawn, left of every real step
+    offsets = np.linspace(-0.25, 0.25, len(scenes)) if len(scenes) > 1 else [0.0]
+    for j, scene in enumerate(scenes):
+        marker = SCENE_MARKERS[j % len(SCENE_MARKERS)]
+        for e in (e for e in entries if e["scene"] == scene and stab.limits(e) is not None):
+            blow, drift = stab.limits(e)
+            y = names.index(e["integrator"]) + offsets[j]
+            colour = palette.colour(e["integrator"])
+            xs = []
+            for k, t in enumerate(times):
+                d = stab.drift_at(e, t)
+                if d is None:
+                    continue
+                h = rp.num(d.get("h"))
+                fill = HORIZON_FILLS[min(k, len(HORIZON_FILLS) - 1)]
+                if math.isfinite(h):
+                    ax.plot([h], [y], marker=marker, color=colour, fillstyle=fill, markersize=7, linestyle="none")
+                    xs.append(h)
+                else:
+                    ax.plot([none_x], [y], marker="x", color=colour, markersize=7, linestyle="none")
+            bars = sorted({rp.num(b.get("h")) for b in blow if math.isfinite(rp.num(b.get("h")))})
+            for h in bars:
+                ax.plot([h], [y], marker="|", color=BLOW_UP_COLOUR, markersize=10, markeredgewidth=2,
+                        linestyle="none")
+            ends = xs + bars
+            if ends:
+                ax.plot([min(ends), max(ends)], [y, y], color=colour, linewidth=0.8, alpha=0.4)
+        ax.plot([], [], marker=marker, color="black", linestyle="none", label=scene)
+    for k, t in enumerate(times):
+        ax.plot([], [], marker="o", color="black", fillstyle=HORIZON_FILLS[min(k, len(HORIZON_FILLS) - 1)],
+                linestyle="none", label=f"h*({t:g} s)")
+    ax.plot([], [], marker="|", color=BLOW_UP_COLOUR, markeredgewidth=2, linestyle="none", label="blow-up step")
+    ax.plot([], [], marker="x", color="black", linestyle="none", label="no step keeps the bounds")
+    ax.axvline(none_x * 1.5, color="#999999", linewidth=0.7, linestyle=":")
+    ax.set_xscale("log")
+    ax.set_yticks(range(len(names)), names, fontsize=8)
+    _colour_ticklabels(ax, names, palette)
+    ax.set_ylim(len(names) - 0.5, -0.5)
+    ax.set_xlabel("step h (s)")
+    ax.grid(True, axis="x", which="major", alpha=0.3)
+    bounds = entries[0].get("thresholds") or {}
+    ax.set_title("drift-limited step h*(T) per horizon (fill)\nand blow-up step (bar) per method and scene\n"
+                 f"(h*: energy error ≤ {rp.num(bounds.get('energy')):g} of the scale, "
+                 f"‖RᵀR − I‖ ≤ {rp.num(bounds.get('rotation_defect')):g} to T)", fontsize=10)
+    ax.text(none_x, -0.6, "none", ha="center", va="bottom", fontsize=7, color="#666666")
+
+
 def _failure_panel(ax, runs, palette):
     of = rp.by_integrator(runs)
     names = list(of)
@@ -95,7 +160,8 @@ def _failure_panel(ax, runs, palette):
 
 
 def stability(report, palette):
-    """Largest stable step per fixed-step method and scene (left) and run statuses per method (right)."""
+    """Blow-up and drift-limited steps per fixed-step method and scene (left; a report of before: the largest stable
+    step) and run statuses per method (right)."""
     entries = rp.stable_steps(report)
     runs = rp.runs(report)
     if not entries and not runs:
@@ -107,11 +173,13 @@ def stability(report, palette):
     # margins in inches, not fractions: the figure's height grows with the number of methods
     fig.subplots_adjust(bottom=0.8 / height, top=1 - 0.6 / height)
     if entries:
-        _largest_stable_panel(axes[0], entries, palette)
+        # a report of before the two limits has one largest stable step per entry
+        (_limits_panel if stab.has_limits(entries) else _largest_stable_panel)(axes[0], entries, palette)
         # under the panel: inside, it would cover the methods with the largest steps
         handles, labels = axes[0].get_legend_handles_labels()
         fig.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.27 if runs else 0.5, 0.0),
-                   ncol=min(5, len(labels)), fontsize=7.5, frameon=False, title="scene", title_fontsize=7.5)
+                   ncol=min(5, len(labels)), fontsize=7.5, frameon=False,
+                   title="marker: scene; fill: horizon" if stab.has_limits(entries) else "scene", title_fontsize=7.5)
     if runs:
         _failure_panel(axes[-1], runs, palette)
     else:
@@ -126,13 +194,14 @@ def stability(report, palette):
 
 def read_trajectory(path, columns=("t", "x", "y")):
     """Some columns of a trajectory CSV (docs/formats.md), by header name: {name: array}."""
-    with open(path, newline="", encoding="utf-8") as f:
-        reader = csv.reader(f)
-        header = [h.strip() for h in next(reader)]
-        for key in columns:
-            if key not in header:
-                raise ValueError(f"{path}: trajectory CSV has no column '{key}'")
-        rows = np.array([[float(v) for v in row] for row in reader if row], dtype=float)
+    # a regular file within the limit (analysis/safe_files.py): InputFileError, a ValueError, otherwise
+    reader = csv.reader(io.StringIO(safe_files.read_text(path, "trajectory", safe_files.TRAJECTORY_LIMIT),
+                                    newline=""))
+    header = [h.strip() for h in next(reader)]
+    for key in columns:
+        if key not in header:
+            raise ValueError(f"{path}: trajectory CSV has no column '{key}'")
+    rows = np.array([[float(v) for v in row] for row in reader if row], dtype=float)
     if rows.size == 0:
         raise ValueError(f"{path}: trajectory CSV has no rows")
     return {k: rows[:, header.index(k)] for k in columns}
@@ -198,9 +267,8 @@ def scene_files(report, scene_dir):
         if not isinstance(given, str) or not given.endswith(".json") or not os.path.isfile(given):
             continue
         try:
-            with open(given, encoding="utf-8") as f:
-                name = json.load(f).get("name")
-        except (OSError, ValueError, AttributeError):
+            name = json.loads(safe_files.read_text(given, "scene file", safe_files.SCENE_LIMIT)).get("name")
+        except (ValueError, AttributeError, RecursionError):
             continue
         if isinstance(name, str):
             files.setdefault(name, given)
@@ -221,11 +289,10 @@ def scenes(report, scene_dir, trajectory_dir=None, messages=None, rollbench=land
     for name in rp.scenes(report):
         path = files.get(name) or os.path.join(scene_dir, f"{name}.json")
         try:
-            with open(path, encoding="utf-8") as f:
-                scene = json.load(f)
+            scene = json.loads(safe_files.read_text(path, "scene file", safe_files.SCENE_LIMIT))
             if not isinstance(scene, dict) or not isinstance(scene.get("landscape"), str):
                 raise ValueError("no key 'landscape'")
-        except (OSError, ValueError) as e:
+        except (ValueError, RecursionError) as e:
             messages.append(f"scenes.png: left out {name} ({path}: {e})")
             continue
         trajectory = None

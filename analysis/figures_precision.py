@@ -11,7 +11,7 @@ from analysis.figures import NothingToPlot, empty_log_axes, legend_right, new_fi
 
 
 def _cost_axes_label(kind):
-    return "wall time per run, median (s)" if kind == "time" else "right-hand-side evaluations"
+    return "wall time per run, median (s)" if kind == "time" else "rhs-equivalents (Jacobians, Newton passes included)"
 
 
 def _draw_method(ax, runs, name, cost_of, metric, floor, palette, label=None):
@@ -28,7 +28,7 @@ def _finish_axes(ax, scene, metric, kind, floor, title):
     ax.set_yscale("log")
     ax.set_xlabel(_cost_axes_label(kind))
     ax.grid(True, which="major", alpha=0.3)
-    what = "wall time" if kind == "time" else "rhs evaluations"
+    what = "wall time" if kind == "time" else "rhs-equivalents"
     ax.set_title(f"{scene}: {title}{metric} error against {what}", fontsize=10)
     if not empty_log_axes(ax, "no successful run with a measured error"):
         shade_floor(ax, floor, side="left")
@@ -124,6 +124,12 @@ def work_precision_best(report, scene, palette, metric=rp.DEFAULT_METRIC):
     return fig
 
 
+def _fitted_line(tol, intercept, slope):
+    """The report's fit log10 error = intercept + slope log10 tol, at 20 tolerances over those drawn."""
+    xs = np.geomspace(tol.min(), tol.max(), 20)
+    return xs, np.power(10.0, intercept + slope * np.log10(xs))
+
+
 def tolerance(report, scene, palette, metric=rp.DEFAULT_METRIC):
     """Worst error against tolerance per adaptive method, with the report's fit (slope in the legend)."""
     runs = rp.runs(report, scene, adaptive=True)
@@ -146,9 +152,9 @@ def tolerance(report, scene, palette, metric=rp.DEFAULT_METRIC):
                 label=label)
         intercept = rp.num((fit or {}).get("intercept"))
         if tol.size and math.isfinite(slope) and math.isfinite(intercept) and metric == "worst":
-            xs = np.geomspace(tol.min(), tol.max(), 20)
-            ax.plot(xs, 10.0 ** (intercept + slope * np.log10(xs)), color=style["color"],
-                    linestyle=style["linestyle"], linewidth=1.1, label="_fit")
+            with np.errstate(over="ignore", under="ignore", invalid="ignore"):  # a report's absurd fit: left out
+                xs, ys = positive(*_fitted_line(tol, intercept, slope))
+            ax.plot(xs, ys, color=style["color"], linestyle=style["linestyle"], linewidth=1.1, label="_fit")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("tolerance (rtol = atol)")

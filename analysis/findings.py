@@ -5,7 +5,7 @@ flat/Lie pair the flat/Lie time ratio with its spread over the timed
 repeats; then what the order study could and could not decide."""
 import math
 
-from analysis import answer, costs, frontier, horizon, horizon_ladder, pairs, regime, reversibility
+from analysis import answer, costs, frontier, horizon, horizon_ladder, pairs, regime, reversibility, stability
 from analysis import markdown as md
 from analysis import report as rp
 from analysis.pairs import ratio_text
@@ -254,7 +254,7 @@ def _findings_section(report, metric=rp.DEFAULT_METRIC, figure=()):
     lines += frontier_lines(report, scenes, metric)
     lines += regime.findings_lines(report, metric) + order_lines(report) + horizon.finding_lines(report)
     lines += horizon_ladder.finding_lines(report)
-    lines += reversibility.finding_lines(report) + [""]
+    lines += reversibility.finding_lines(report) + stability.finding_lines(report) + [""]
     lines += ["### Cheapest method by wall time", ""]
     lines += md.table(["scene", "kind"] + [f"{metric} error {t:.0e}" for t in costs.TARGETS], rows) + [""]
     if pair_rows:

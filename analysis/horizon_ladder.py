@@ -1,21 +1,25 @@
 """What keeps the energy bounded over a long horizon, and at what price (docs/usage.md#the-horizon-study; the ladder
 of scenes in docs/model.md#invariants-beyond-the-energy). Per horizon scene, each method's energy error is
-"bounded" (its envelope's exponent p at most BOUNDED_P with early and late halves agreeing, or the whole window at
-rounding), "grows" (p above it) or "not yet asymptotic"; each method is "symmetric" when the sweep's
+"bounded" (the runner's class bounded, p at most BOUNDED_P over three decades that agree, or rounding), "grows"
+(a decided linear, quadratic, power or exponential class) or "undecided" (bench/lib/growth_class.hpp), and only
+decided classes are compared: "bounded where symmetry alone grows" needs both decided. Each method is "symmetric"
+when the sweep's
 reversibility defects of all its runs are at rounding (analysis/reversibility.py), "explicit" when they are
 not. The findings say per scene which symmetric methods keep the energy bounded, which do not, and the cheapest
 run whose relative energy error stays under ENERGY_TARGET over the whole horizon, with its CPU time against rk4's
 run at the study's step: the study's runs and the price runs (the same horizon at k h, `coarsening` k) all compete,
-so a method that stays under at 16 h is priced there. horizon-cost.png draws it: per scene, each method's runs
-(one point per step, joined) as CPU seconds against the largest relative energy error, with the ENERGY_TARGET
-line."""
+so a method that stays under at 16 h is priced there. Errors and CPU times are compared over the study's own
+horizon: a run the study took on a decade further (undecided) is priced and compared by its first run
+(`earlier_runs`). horizon-cost.png draws it: per scene, each method's runs (one point per step, joined) as CPU
+seconds against the largest relative energy error, with the ENERGY_TARGET line."""
 import math
 
 from analysis import figures, horizon, reversibility
 from analysis import markdown as md
 from analysis import report as rp
 
-# Bounded: an envelope that neither drifts (p = 1) nor random-walks (p = 1/2); halfway to the random walk.
+# Bounded: an envelope that neither drifts (p = 1) nor random-walks (p = 1/2); halfway to the random walk (the
+# runner's class band, GrowthRules::band).
 BOUNDED_P = 0.25
 # The relative energy error a long run must stay under (issue 34: "keep the energy error under 1e-6").
 ENERGY_TARGET = 1e-6
@@ -36,23 +40,39 @@ def symmetric_methods(report):
     return {n for n, w in worst.items() if w <= reversibility.AT_ROUNDING}
 
 
+UNDECIDED = "undecided"
+
+
 def energy_class(run):
-    """'bounded', 'grows', 'not yet asymptotic', or None (a run that stopped, or no fit)."""
+    """'bounded', 'grows', 'undecided', or None (a run that stopped, or no fit): the runner's class."""
     if run.get("status", "ok") != "ok":
         return None
-    fit = horizon.fit_of(run, "energy_error")
-    if fit.get("at_rounding"):
+    c = horizon.growth_class(horizon.fit_of(run, "energy_error"))
+    if c in ("bounded", horizon.ROUNDING):
         return "bounded"
-    p = rp.num(fit.get("p"))
-    if not math.isfinite(p):
-        return None
-    if horizon.not_asymptotic(fit):
-        return "not yet asymptotic"
-    return "bounded" if p <= BOUNDED_P else "grows"
+    if c in horizon.GROWING:
+        return "grows"
+    return UNDECIDED if c == horizon.UNDECIDED else None
+
+
+def _first_run(run):
+    """The study's first run of a record the study took on a decade further (`earlier_runs`), else None."""
+    earlier = [e for e in run.get("earlier_runs") or [] if isinstance(e, dict)]
+    return earlier[0] if earlier else None
 
 
 def relative_energy_error(run):
-    """The largest energy error over the run relative to its energy scale; inf for a run that stopped."""
+    """The largest energy error over the study's horizon relative to the energy scale (the record's run, or its
+    first run where the study went on a decade: runs are compared over one horizon); inf for a run that stopped."""
+    first = _first_run(run)
+    if first is not None:
+        largest = first.get("largest") or {}
+        key = horizon.ON_GROUP if rp.num(largest.get(horizon.ON_GROUP)) >= 0 else "energy_error"
+        scale = rp.num(run.get("energy_scale"))
+        error = rp.num(largest.get(key))
+        if first.get("status", "ok") != "ok":
+            return math.inf
+        return error / scale if math.isfinite(error) and scale > 0 else math.nan
     if run.get("status", "ok") != "ok":
         return math.inf
     errors = [rp.num(e) for e in run.get("energy_error") or []]
@@ -62,17 +82,20 @@ def relative_energy_error(run):
 
 
 def cpu_seconds(run):
-    """The run's CPU time (`cpu_s`); its wall time for reports that predate it."""
+    """The CPU time of the run over the study's horizon (`cpu_s`; its first run's where the study went on a
+    decade); its wall time for reports that predate it."""
+    run = _first_run(run) or run
     cpu = rp.num(run.get("cpu_s"))
     return cpu if math.isfinite(cpu) else rp.num(run.get("wall_s"))
 
 
 def _p_text(run):
     fit = horizon.fit_of(run, "energy_error")
-    if fit.get("at_rounding"):
+    c = horizon.growth_class(fit)
+    if c == horizon.ROUNDING:
         return "rounding"
-    if horizon.not_asymptotic(fit):
-        return "not yet asymptotic, " + horizon.halves_text(fit)
+    if c == horizon.UNDECIDED:
+        return horizon.undecided_text(fit, run)
     return f"p = {rp.num(fit.get('p')):.2f}"
 
 
@@ -118,29 +141,30 @@ def finding_lines(report):
         sym = [(r, c) for r, c in classes if r["integrator"] in symmetric and c]
         if not sym:
             continue
-        by = {kind: [r for r, c in sym if c == kind] for kind in ("bounded", "grows", "not yet asymptotic")}
+        by = {kind: [r for r, c in sym if c == kind] for kind in ("bounded", "grows", UNDECIDED)}
         explicit = [r for r, c in classes if r["integrator"] not in symmetric and c == "grows"]
         if by["grows"]:
             failed.append(scene)
-        elif not by["not yet asymptotic"]:
+        elif not by[UNDECIDED]:
             held.append(scene)
         first = entries[0]
         parts = []
         for kind, text in (("bounded", "energy bounded for the symmetric "), ("grows", "growing for the symmetric "),
-                           ("not yet asymptotic", "undecided for the symmetric ")):
+                           (UNDECIDED, "undecided for the symmetric ")):
             if by[kind]:
                 parts.append(text + _listed(by[kind]))
         if explicit:
             ps = sorted(rp.num(horizon.fit_of(r, "energy_error").get("p")) for r in explicit)
             parts.append(f"growing for {len(explicit)} other method{'s' if len(explicit) > 1 else ''} ({_range(ps)})")
         parts.append(_price(horizon.all_runs(report, scene)))
-        lines.append(f"- Ladder, {scene} ({horizon.kind(first)}, {horizon.count_text(first.get('steps_planned'))} "
-                     f"steps): " + "; ".join(parts) + ".")
+        lines.append(f"- Ladder, {scene} ({horizon.kind(first)}, {horizon.study_steps_text(entries)}): "
+                     + "; ".join(parts) + ".")
     if horizon.scenes(report) and not symmetric:
         lines.append("- Ladder: no method's reversibility defect was at rounding in this report's sweep (run the "
                      "horizon study's methods in the sweep too), so no line says what symmetry keeps.")
     if held or failed:
-        lines.append(f"- Reversibility and the energy (bounded: p ≤ {BOUNDED_P} or rounding): symmetry kept every "
+        lines.append(f"- Reversibility and the energy (decided classes only; bounded: p ≤ {BOUNDED_P} or rounding): "
+                     "symmetry kept every "
                      "symmetric method's energy bounded on " + (", ".join(held) or "no scene")
                      + "; a symmetric method's energy grew on " + (", ".join(failed) or "no scene") + ".")
     return lines + variational_lines(report, symmetric)
@@ -151,19 +175,22 @@ def _with_error(r):
 
 
 def _verdict(v, v_class, others):
-    """What the variational run adds over the symmetric, non-variational runs of the same scene, and its key."""
+    """What the variational run adds over the symmetric, non-variational runs of the same scene, and its key; only
+    decided classes are compared (an undecided run on either side says so, never "bounded where ... grows")."""
     grown = [r for r, c in others if c == "grows"]
     held = [r for r, c in others if c == "bounded"]
-    open_ = [r for r, c in others if c == "not yet asymptotic"]
-    names = ", ".join(r["integrator"] for r in (grown or open_ if v_class == "bounded" else held))
-    if v_class == "not yet asymptotic":
-        return "undecided at this horizon", "undecided"
+    open_ = [r for r, c in others if c == UNDECIDED]
+    names = ", ".join(r["integrator"] for r in (held if v_class != "bounded" else open_ or grown))
+    if v_class == UNDECIDED:
+        return "not compared: its class is undecided", "undecided"
     # a symmetric, non-variational method that stays bounded shows symmetry alone suffices on this scene, whatever
-    # another one does: only where none does can the variational structure add boundedness
-    if v_class == "bounded" and grown and not held:
+    # another one does: only where none does can the variational structure add boundedness, and only where every
+    # one of them is decided can it be said that symmetry alone did not keep it
+    if v_class == "bounded" and grown and not held and not open_:
         return f"it keeps the energy bounded where symmetry alone did not ({names})", "bounded"
     if v_class == "bounded" and open_ and not held:
-        return f"it keeps the energy bounded where symmetry alone is still undecided ({names})", "ahead"
+        grew = f"; {', '.join(r['integrator'] for r in grown)} grow" if grown else ""
+        return f"it keeps the energy bounded where symmetry alone is still undecided ({names}{grew})", "ahead"
     if v_class == "bounded":
         peers = [r for r in held if r.get("declared_order") == v.get("declared_order")] or held
         best = min(peers, key=relative_energy_error, default=None)

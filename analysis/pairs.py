@@ -126,7 +126,7 @@ def pairs_section(report, metric=rp.DEFAULT_METRIC):
     lines = [f"{HEADING} ({metric} error)", "",
              f"Each pair shares its Butcher tableau; only the geometry differs. Cost to reach the {metric} "
              f"error, {costs.HOW}. The rotation error is the one the method has there (interpolated in the "
-             "same way along the rhs-evaluation curve; with \"≤\", its cheapest run's).", ""]
+             "same way along the rhs-equivalents curve; with \"≤\", its cheapest run's).", ""]
     any_rows = False
     for scene in rp.scenes(report):
         rows = pair_rows(report, scene, metric)
@@ -134,7 +134,7 @@ def pairs_section(report, metric=rp.DEFAULT_METRIC):
             continue
         any_rows = True
         lines += [f"### Same tableau — {scene}", ""]
-        lines += md.table(["pair", f"{metric} error", "integrator", "family", "time (s)", "rhs evals",
+        lines += md.table(["pair", f"{metric} error", "integrator", "family", "time (s)", "rhs-equivalents",
                            "rotation error there (rad)"], rows) + [""]
     if not any_rows:
         lines += ["No same-tableau pair ran in this report (a pair: a flat-view and a Lie-group method with the "

@@ -32,6 +32,7 @@ from analysis import figures, figures_answer, figures_ball, figures_overview, fi
 from analysis import html, landscape  # noqa: E402
 from analysis import answer, horizon, horizon_ladder, regime, style, summary  # noqa: E402
 from analysis import report as rp  # noqa: E402
+from analysis import safe_files  # noqa: E402
 
 DEFAULT_SCENES = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "problems", "scenes")
 
@@ -113,32 +114,29 @@ def write_all(report, out_dir, options=None, log=print, figures_out=None):
     figures_out, a dict, receives the Figures by file name (for tests).
     """
     options = options or Options()
-    os.makedirs(out_dir, exist_ok=True)
-    messages = []
-    written = []
-    built = build_figures(report, options, messages, log)
-    if figures_out is not None:
-        figures_out.update(built)
-    for name, fig in built.items():
-        path = os.path.join(out_dir, name)
-        try:
-            # tight: the legends sit outside the axes
-            fig.savefig(path, bbox_inches="tight")
-        except (ValueError, RuntimeError, OverflowError) as e:
-            # one figure that cannot be drawn must not cost the others
-            messages.append(f"could not draw {name}: {e}")
-            continue
-        written.append(path)
-    text = summary.summary_markdown(report, options.metric)
-    names = [os.path.basename(p) for p in written]
-    pages = [("summary.md", text), ("index.html", html.index_html(names, text))]
-    if any(html.all_methods(n) for n in names):
-        pages.append((html.ALL_METHODS_PAGE, html.all_methods_html(names)))
-    for name, content in pages:
-        path = os.path.join(out_dir, name)
-        with open(path, "w", encoding="utf-8") as f:
-            f.write(content)
-        written.append(path)
+    # opened before the work, under the path rule (analysis/safe_files.py): every file goes through it
+    with safe_files.OutputFolder(out_dir, create=True) as folder:
+        messages = []
+        written = []
+        built = build_figures(report, options, messages, log)
+        if figures_out is not None:
+            figures_out.update(built)
+        for name, fig in built.items():
+            try:
+                # tight: the legends sit outside the axes
+                written.append(folder.write_figure(name, fig, bbox_inches="tight"))
+            except safe_files.OutputFileError:
+                raise
+            except (ValueError, RuntimeError, OverflowError) as e:
+                # one figure that cannot be drawn must not cost the others
+                messages.append(f"could not draw {name}: {e}")
+        text = summary.summary_markdown(report, options.metric)
+        names = [os.path.basename(p) for p in written]
+        pages = [("summary.md", text), ("index.html", html.index_html(names, text))]
+        if any(html.all_methods(n) for n in names):
+            pages.append((html.ALL_METHODS_PAGE, html.all_methods_html(names)))
+        for name, content in pages:
+            written.append(folder.write_text(name, content))
     for m in messages:
         log(m)
     for p in written:
@@ -178,15 +176,21 @@ def main(argv=None):
     perf = None
     if args.perf:
         try:
-            with open(args.perf, encoding="utf-8") as f:
-                perf = json.load(f)
+            perf = json.loads(safe_files.read_text(args.perf, "benchmark file"))
             if not isinstance(perf, dict):
                 raise ValueError("not a JSON object")
-        except (OSError, ValueError) as e:
-            print(f"error: cannot read the benchmark file '{args.perf}': {e}", file=sys.stderr)
+        except safe_files.InputFileError as e:
+            print(f"error: {e}", file=sys.stderr)
             return 2
-    write_all(report, args.out, Options(args.metric, perf, args.trajectories, args.ball, args.scenes,
-                                        args.rollbench, args.scene_figures))
+        except (ValueError, RecursionError) as e:
+            print(f"error: cannot read the benchmark file {safe_files.shown(args.perf)}: {e}", file=sys.stderr)
+            return 2
+    try:
+        write_all(report, args.out, Options(args.metric, perf, args.trajectories, args.ball, args.scenes,
+                                            args.rollbench, args.scene_figures))
+    except safe_files.OutputFileError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
     return 0
 
 

@@ -1,17 +1,22 @@
 """Reading rollbench reports (docs/formats.md, "Report (JSON)").
 
-load() checks the schema string and the keys the analysis relies on, and
-says which key is missing where; every other key is optional, and sections
-(orders, stability, references) may be missing or empty. The accessors
-below turn the report's nulls into NaN so that the figures and tables can
-treat "not measured" uniformly.
+load() reads the file as analysis/safe_files.py reads every input (a
+regular file of UTF-8 within its limit), parses it within the JSON limits
+rollbench's own readers keep (analysis/json_limits.py: 64 levels, no NaN,
+numbers within a double), checks the schema string and the keys the analysis relies on, and
+then the type and range of every key it reads (analysis/report_schema.py);
+each failure is a ReportError that names the file and the key. Other keys
+are optional, and sections (orders, stability, references) may be missing
+or empty. The accessors below turn the report's nulls into NaN so that the
+figures and tables can treat "not measured" uniformly.
 """
-import json
 import contextlib
 import dataclasses
 import math
 
 import numpy as np
+
+from analysis import json_limits, report_schema, safe_files
 
 SCHEMA = "rollbench.report/2"
 # "worst" (the largest of the error components, each made dimensionless) is
@@ -37,13 +42,17 @@ class ReportError(ValueError):
 
 def load(path):
     try:
-        with open(path, encoding="utf-8") as f:
-            data = json.load(f)
-    except OSError as e:
-        raise ReportError(f"cannot read the report '{path}': {e.strerror}") from None
-    except json.JSONDecodeError as e:
-        raise ReportError(f"'{path}' is not JSON: {e}") from None
-    return validate(data, str(path))
+        # a regular file of UTF-8 within the limit (analysis/safe_files.py): a FIFO or /dev/zero is refused at once
+        text = safe_files.read_text(path, "report", safe_files.REPORT_LIMIT)
+    except safe_files.InputFileError as e:
+        raise ReportError(str(e)) from None
+    try:
+        # at most 64 levels, no NaN, numbers within a double: as rollbench's own readers (analysis/json_limits.py)
+        data = json_limits.parse(text, safe_files.shown(path))
+    except json_limits.JsonError as e:
+        raise ReportError(str(e)) from None
+    # the path in messages as shown, its control characters and non-ASCII bytes escaped, without the quotes
+    return validate(data, safe_files.shown(path)[1:-1])
 
 
 def validate(data, name="report"):
@@ -53,7 +62,9 @@ def validate(data, name="report"):
     if "schema" not in data:
         raise ReportError(f"{name}: missing key 'schema' (expected \"{SCHEMA}\")")
     if data["schema"] != SCHEMA:
-        raise ReportError(f"{name}: schema version {data['schema']!r} found, this analysis reads only "
+        found = f"'{report_schema.excerpt(data['schema'])}'" if isinstance(data["schema"], str) else \
+            report_schema.describe(data["schema"])
+        raise ReportError(f"{name}: schema version {found} found, this analysis reads only "
                           f"\"{SCHEMA}\" (re-run rollbench to write a current report)")
     for section, keys in REQUIRED.items():
         entries = section_entries(data, section, name)
@@ -63,9 +74,6 @@ def validate(data, name="report"):
             for key in keys:
                 if key not in entry:
                     raise ReportError(f"{name}: {section}[{i}] has no key '{key}'")
-    for i, run in enumerate(data.get("runs") or []):
-        if not run["adaptive"] and run.get("h") is None and run["status"] == "ok":
-            raise ReportError(f"{name}: runs[{i}] is a fixed-step run with no key 'h'")
     if "error_components" not in data:
         raise ReportError(f"{name}: missing key 'error_components' (the components of a run's error; "
                           "re-run rollbench to write a current report)")
@@ -76,6 +84,13 @@ def validate(data, name="report"):
         for key in ("name", "label", "unit"):
             if not isinstance(entry, dict) or not isinstance(entry.get(key), str):
                 raise ReportError(f"{name}: error_components[{i}] has no text key '{key}'")
+    try:
+        report_schema.check(data)
+    except report_schema.SchemaError as e:
+        raise ReportError(f"{name}: {e}") from None
+    for i, run in enumerate(data.get("runs") or []):
+        if not run["adaptive"] and run.get("h") is None and run["status"] == "ok":
+            raise ReportError(f"{name}: runs[{i}] is a fixed-step run with no key 'h'")
     return data
 
 

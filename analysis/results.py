@@ -19,6 +19,7 @@ if __package__ in (None, ""):
 
 from analysis import findings, regime  # noqa: E402
 from analysis import report as rp  # noqa: E402
+from analysis import safe_files  # noqa: E402
 from analysis import summary  # noqa: E402
 
 
@@ -99,24 +100,25 @@ def main(argv=None):
     args = parser.parse_args(argv)
     try:
         report = rp.load(args.report)
-    except rp.ReportError as e:
+        # both outputs checked before either is written, under the path rule (analysis/safe_files.py)
+        with safe_files.OutputFile(args.out) as out:
+            readme = safe_files.OutputFile(args.readme) if args.readme else None
+            text = safe_files.read_text(args.readme, "README") if readme else None
+            out.write(results_markdown(report, args.title, args.command, args.wall_s))
+            print(f"wrote {args.out}")
+            if readme:
+                with readme:
+                    page = os.path.relpath(args.out, os.path.dirname(os.path.abspath(args.readme)))
+                    try:
+                        text = replace_readme_block(text, readme_block(report, page))
+                    except ValueError as e:
+                        print(f"error: {args.readme}: {e}", file=sys.stderr)
+                        return 2
+                    readme.write(text)
+                print(f"wrote the headline block of {args.readme}")
+    except (rp.ReportError, safe_files.InputFileError, safe_files.OutputFileError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
-    with open(args.out, "w", encoding="utf-8") as f:
-        f.write(results_markdown(report, args.title, args.command, args.wall_s))
-    print(f"wrote {args.out}")
-    if args.readme:
-        with open(args.readme, encoding="utf-8") as f:
-            text = f.read()
-        page = os.path.relpath(args.out, os.path.dirname(os.path.abspath(args.readme)))
-        try:
-            text = replace_readme_block(text, readme_block(report, page))
-        except ValueError as e:
-            print(f"error: {args.readme}: {e}", file=sys.stderr)
-            return 2
-        with open(args.readme, "w", encoding="utf-8") as f:
-            f.write(text)
-        print(f"wrote the headline block of {args.readme}")
     return 0
 
 

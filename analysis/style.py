@@ -22,7 +22,7 @@ FAMILY_COLOURS = {
     "quaternion": "#e377c2",   # pink
     "scipy": "#0fa3b1",        # cyan: SciPy solve_ivp, a peer (docs/peers.md)
     "octave": "#b8860b",       # dark gold: GNU Octave's ode45/ode23/ode15s, a peer
-    "discrete-gradient": "#000000",  # black: dg2, energy kept to rounding
+    "discrete-gradient": "#000000",  # black: dg2, the flat energy kept to rounding
     "nonholonomic-variational": "#6b8e23",  # olive: dla2, discrete Lagrange-d'Alembert
 }
 FALLBACK_COLOURS = ["#17becf", "#bcbd22", "#7f7f7f", "#393b79", "#637939", "#843c39", "#7b4173"]
@@ -37,7 +37,9 @@ STATUS_COLOURS = {
     "domain": "#17becf", "step-underflow": "#9467bd", "max-steps": "#8c564b",
     # an isolated plug-in's run that died, was killed at its limit, or left SO(3)
     "crashed": "#7f0000", "timeout": "#525252", "off-group": "#e377c2",
-    "chart-limit": "#1f77b4", "error": "#000000",
+    "chart-limit": "#1f77b4",
+    # an implicit method's Newton iteration that did not converge: the method's failure, not the model's
+    "solver": "#7f7f00", "error": "#000000",
 }
 
 

@@ -5,7 +5,7 @@ import math
 
 import re
 
-from analysis import answer, costs, findings, horizon, pairs, regime
+from analysis import answer, costs, findings, horizon, pairs, regime, stability
 from analysis import markdown as md
 from analysis import report as rp
 
@@ -100,6 +100,9 @@ def stability_section(report):
     entries = rp.stable_steps(report)
     if not entries:
         return lines + ["The report has no stability study.", ""]
+    if stability.has_limits(entries):
+        return lines + _stability_limits(entries)
+    # a report of before the two limits: one largest stable step per entry
     bounds = entries[0].get("thresholds") or {}
     horizon = rp.num(entries[0].get("horizon"))
     lines += ["Largest step h such that this and every smaller tested step run to "
@@ -109,7 +112,8 @@ def stability_section(report):
               f"{md.fmt(rp.num(bounds.get('rotation_defect')))} (R is no rotation any more), or when either "
               "grows exponentially (over the last two doublings of time its envelope's slope on log-log "
               f"reaches {md.fmt(rp.num(bounds.get('growth_exponent')))} and accelerates). The energy error "
-              "(of the scale) and the rotation defect at that step are its accuracy, shown beside the verdict "
+              "(of the scale; at the nearest rotation, H(polar(R), v, α), where the report has it) and the "
+              "rotation defect at that step are its accuracy, shown beside the verdict "
               "and not used for it; \"none\": no tested step passes. Where a larger step failed, how the "
               "first one did (`chart-limit`: a Lie step past the exponential chart's edge).", ""]
     rows = []
@@ -119,11 +123,48 @@ def stability_section(report):
         tested = [t for t in tested if math.isfinite(t)]
         span = f"{min(tested):.3g} – {max(tested):.3g} ({len(tested)})" if tested else "—"
         rows.append([e["scene"], e["integrator"], md.fmt(h) if math.isfinite(h) else "none",
-                     md.fmt(rp.num(e.get("rotation_defect"))), md.fmt(rp.num(e.get("energy_error"))), span,
+                     md.fmt(rp.num(e.get("rotation_defect"))),
+                     # at the nearest rotation where recorded: the flat H hides R's drift off SO(3)
+                     md.fmt(rp.num(e.get("energy_error_on_group", e.get("energy_error")))), span,
                      _first_failure(e, bounds)])
     return lines + md.table(["scene", "integrator", "largest stable h (s)", "rotation defect there",
                              "energy error there (of the scale)", "tested h (count)", "next step fails by"],
                             rows) + [""]
+
+
+def _stability_limits(entries):
+    """The blow-up step and h*(T) per horizon of each method and scene (analysis/stability.py)."""
+    bounds = entries[0].get("thresholds") or {}
+    times = stability.horizons(entries)
+    lines = ["Two limits per fixed-step method and scene, read on a ladder of steps run from the largest down to "
+             "the first that keeps every bound to the last horizon, each step one run to the last horizon read at "
+             "each on its way. The **blow-up step**: the smallest step whose run fails by T — it stops (its "
+             "status: a non-finite state, the solver failing, or a physical stop, which the numerics cause on "
+             f"these bounded scenes), or its energy error passes {md.fmt(rp.num(bounds.get('blow_up_energy')))} × "
+             f"the energy scale or ‖RᵀR − I‖_F passes {md.fmt(rp.num(bounds.get('blow_up_defect')))} (where no "
+             "bounded motion goes) — before it drifts out of the bounds below or within "
+             f"{md.fmt(rp.num(bounds.get('blow_up_steps')))} steps of it: the step's own exponential growth. A run "
+             "that drifts out first and fails later fails of its drift, so the blow-up step is the same at every "
+             "horizon unless a step fails only late with no drift before it (\"≤\": every step tried blew up; "
+             "\">\": none did, the ladder's top). The **drift-limited step** h*(T): the largest step whose run "
+             "to T, with every smaller step tried, keeps the energy error (at the nearest rotation, "
+             f"H(polar(R), v, α), of the scale) within {md.fmt(rp.num(bounds.get('energy')))} and ‖RᵀR − I‖_F "
+             f"within {md.fmt(rp.num(bounds.get('rotation_defect')))} and does not blow up; beside it what ended "
+             "the next step, the quantity that crossed first with its largest value (over the run up to T, or up "
+             "to where the study ended it) or its blow-up (\"≥\": the ladder's top kept them; \"none\": not "
+             "even the smallest step tried). A drift that grows as a power of t moves h*(T) with T; no step whose "
+             "energy error passes its bound counts.", ""]
+    rows = []
+    for e in entries:
+        tested = [t for t in rp.tested_h(e) if math.isfinite(t)]
+        span = f"{min(tested):.3g} – {max(tested):.3g} ({len(tested)})" if tested else "—"
+        cells = []
+        for t in times:
+            d = stability.drift_at(e, t)
+            cells.append(stability.drift_text(d) if d else "—")
+        rows.append([e["scene"], e["integrator"], stability.blow_up_text(e)] + cells + [span])
+    return lines + md.table(["scene", "integrator", "blow-up step (s)"]
+                            + [f"h*({stability.seconds(t)}) (s)" for t in times] + ["tested h (count)"], rows) + [""]
 
 
 def _first_failure(entry, bounds):

@@ -9,11 +9,14 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <tuple>
 
 #include "bench/lib/drift.hpp"
 #include "bench/lib/output_file.hpp"
+#include "bench/lib/reference.hpp"
 #include "bench/lib/report.hpp"
 #include "bench/lib/reversibility.hpp"
+#include "bench/lib/run_on_threads.hpp"
 #include "bench/lib/score.hpp"
 #include "bench/lib/score_peers.hpp"
 #include "bench/lib/stepper_option.hpp"
@@ -23,7 +26,9 @@
 #include "integrators/driver.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
+#include "problems/input_file.hpp"
 #include "problems/scene.hpp"
+#include "problems/whole_number.hpp"
 
 namespace {
 
@@ -69,6 +74,14 @@ int run_list(bool markdown) {
   return 0;
 }
 
+// A --t-end where it is given: a finite number > 0, and within a scene's
+// t_end range (problems/scene.hpp: a subnormal end time underflows the steps).
+void check_t_end(double t_end) {
+  if (!(t_end > 0.0 && std::isfinite(t_end))) throw rb::InputError("the end time must be a finite number > 0", "t-end");
+  if (!(t_end >= rb::kMinTEnd && t_end <= rb::kMaxTEnd))
+    throw rb::InputError("the end time must be from 1e-6 to 1e7 (seconds), as a scene's t_end", "t-end");
+}
+
 struct TrajectoryArgs {
   std::string scene, integrator, out, controller;
   // NaN: not given, the default applies; anything given is checked
@@ -80,8 +93,7 @@ int run_trajectory(const TrajectoryArgs& a) {
   const rb::Problem problem = rb::make_problem(scene);
   const rb::Integrator& integrator = rb::find_integrator(a.integrator);
   rb::RunOptions options;
-  if (!std::isnan(a.t_end) && !(a.t_end > 0.0 && std::isfinite(a.t_end)))
-    throw rb::InputError("the end time must be a finite number > 0", "t-end");
+  if (!std::isnan(a.t_end)) check_t_end(a.t_end);
   if (!std::isnan(a.dt_out) && !(a.dt_out > 0.0 && std::isfinite(a.dt_out)))
     throw rb::InputError("the output spacing must be a finite number > 0", "dt-out");
   if (!integrator.adaptive() && !std::isfinite(a.h)) throw rb::InputError("the step must be a finite number > 0", "h");
@@ -104,7 +116,7 @@ int run_trajectory(const TrajectoryArgs& a) {
   options.output_times = rb::equally_spaced_outputs(dt_out, options.t_end);
 
   // the CSV replaces a.out only once it is whole (bench/lib/output_file.hpp)
-  rb::OutputFile out(a.out, "out");
+  rb::OutputFile out(a.out, "out", rb::IfLost::keep_elsewhere);
   const rb::RunResult run = integrator.integrate(problem, options);
   rb::write_trajectory_csv(out.stream(), problem, run.output);
   out.commit();
@@ -115,7 +127,8 @@ int run_trajectory(const TrajectoryArgs& a) {
               std::string(rb::status_name(run.status)).c_str(), run.stop_time, run.output.t.size() + 1, a.out.c_str());
   std::printf("  steps %ld, rejected %ld, rhs evals %ld, controller %s\n", run.cost.steps, run.cost.rejected,
               run.cost.rhs_evals, rb::controller_of(integrator.controller(), options).c_str());
-  std::printf("  max |energy error| %.3e, max rotation defect %.3e\n", drift.energy, drift.rotation_defect);
+  std::printf("  max |energy error| %.3e (at the nearest rotation %.3e), max rotation defect %.3e\n", drift.energy,
+              drift.energy_on_group, drift.rotation_defect);
   if (run.status != rb::Status::ok) {
     std::fprintf(stderr, "rollbench: run stopped early at t = %.17g: %s: %s\n", run.stop_time,
                  std::string(rb::status_name(run.status)).c_str(), run.message.c_str());
@@ -131,8 +144,7 @@ struct ReversibilityArgs {
 // Each method's reversibility defect on one scene (bench/lib/reversibility.hpp).
 int run_reversibility(const ReversibilityArgs& a) {
   const rb::Scene scene = rb::load_scene(a.scene);
-  if (!std::isnan(a.t_end) && !(a.t_end > 0.0 && std::isfinite(a.t_end)))
-    throw rb::InputError("the end time must be a finite number > 0", "t-end");
+  if (!std::isnan(a.t_end)) check_t_end(a.t_end);
   if (!std::isnan(a.h) && !(a.h > 0.0 && std::isfinite(a.h)))
     throw rb::InputError("the step must be a finite number > 0", "h");
   if (!std::isnan(a.tol) && !(a.tol > 0.0 && std::isfinite(a.tol)))
@@ -234,15 +246,23 @@ int run_landscape(const LandscapeArgs& a) {
   return 0;
 }
 
+// timed repeats per run: enough for any median, and a typo's 10^9 is refused
+constexpr long long kMaxRepeats = 1000;
+
 struct RunArgs {
-  std::string preset, scenes, integrators, hs, tols, out, shard, cache, controller, regime;
-  int repeats = -1, jobs = -1;
+  std::string preset, scenes, integrators, hs, tols, out, cache, controller, regime;
+  // not given: the preset's (shard: the whole sweep); read strictly (problems/whole_number.hpp)
+  std::optional<std::string> repeats, jobs, shard;
   double dt_out = std::nan("");  // NaN: not given
   std::optional<double> t_end;   // given: checked, even "nan"
   bool no_stability = false;
+  // --stability-horizons: the study's horizons; enables the study
+  std::optional<std::string> stability_horizons;
   bool no_finer_steps = false;  // keep the step ladder as given (a sharded sweep's ladder)
   // the horizon study (bench/lib/horizon.hpp): --horizon-steps enables it
   std::string horizon_steps, horizon_scenes, horizon_integrators;
+  // the budget of the decades after the first
+  std::string horizon_steps_max, horizon_cpu_max;
   bool no_horizon = false;
 };
 
@@ -269,26 +289,42 @@ std::string json_text(const nlohmann::json& j) {
   return j.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + '\n';
 }
 
-// "-": standard output
-void write_json(const nlohmann::json& j, const std::string& path) {
-  if (path == "-") {
+// The output --out names, opened before any work, so that an unwritable
+// place or a folder behind another user's link is refused before a
+// reference or run (bench/lib/output_file.hpp); none for "" or "-"
+// (standard output). What cannot be written at the end is kept elsewhere,
+// and the error says where.
+std::optional<rb::OutputFile> open_output(const std::string& path) {
+  if (path.empty() || path == "-") return std::nullopt;
+  return std::optional<rb::OutputFile>(std::in_place, path, "out", rb::IfLost::keep_elsewhere);
+}
+
+// The JSON into the output open_output opened; none: standard output.
+void write_json(const nlohmann::json& j, std::optional<rb::OutputFile>& file) {
+  if (!file) {
     std::fputs(json_text(j).c_str(), stdout);
     return;
   }
-  rb::write_output_file(path, json_text(j), "out");
+  file->stream() << json_text(j);
+  file->commit();
 }
 
 // --horizon-steps N enables the study (the default preset's scenes and
 // methods unless named); every name is checked before any reference.
 void apply_horizon_options(const RunArgs& a, rb::HorizonSpec& h) {
-  const bool given = !a.horizon_steps.empty() || !a.horizon_scenes.empty() || !a.horizon_integrators.empty();
+  const bool given = !a.horizon_steps.empty() || !a.horizon_scenes.empty() || !a.horizon_integrators.empty() ||
+                     !a.horizon_steps_max.empty() || !a.horizon_cpu_max.empty();
   if (a.no_horizon && given)
-    throw rb::InputError("--no-horizon cannot go with --horizon-steps, --horizon-scenes or --horizon-integrators",
-                         "no-horizon");
+    throw rb::InputError(
+        "--no-horizon cannot go with --horizon-steps, --horizon-steps-max, --horizon-cpu-max, --horizon-scenes or "
+        "--horizon-integrators",
+        "no-horizon");
   if (a.no_horizon) h.enabled = false;
   if (!given) return rb::check_horizon(h);
   if (!h.enabled) h = rb::preset("default").horizon;
   if (!a.horizon_steps.empty()) h.steps = rb::parse_horizon_steps(a.horizon_steps);
+  if (!a.horizon_steps_max.empty()) h.steps_max = rb::parse_horizon_steps(a.horizon_steps_max, "horizon-steps-max");
+  if (!a.horizon_cpu_max.empty()) h.cpu_max_s = rb::parse_horizon_cpu_max(a.horizon_cpu_max);
   if (!a.horizon_scenes.empty()) h.scenes = split_names(a.horizon_scenes);
   if (!a.horizon_integrators.empty()) h.integrators = split_names(a.horizon_integrators);
   rb::check_horizon(h);
@@ -317,9 +353,24 @@ int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_
   if (!a.hs.empty()) spec.hs = rb::parse_number_list(a.hs, "h");
   if (!a.tols.empty()) spec.tols = rb::parse_number_list(a.tols, "tol");
   if (!a.controller.empty()) spec.controller = &rb::filter_controller(a.controller);  // refuses unknown names
-  if (a.repeats >= 0) spec.repeats = a.repeats;
-  if (a.jobs > 0) spec.jobs = a.jobs;
+  if (a.repeats) spec.repeats = static_cast<int>(rb::parse_whole_number(*a.repeats, 0, kMaxRepeats, "repeats"));
+  if (a.jobs) {
+    spec.jobs = static_cast<int>(rb::parse_whole_number(*a.jobs, 1, rb::kMaxJobs, "jobs"));
+    // the report keeps the jobs asked for (shards of one sweep on machines
+    // of other sizes still merge); the runs use at most one thread per core
+    if (const int threads = rb::threads_for(spec.jobs); threads < spec.jobs)
+      std::fprintf(stderr, "rollbench: note: --jobs %d is more than the %d cores here: the runs use %d threads\n",
+                   spec.jobs, threads, threads);
+  }
   if (a.no_stability) spec.stability.enabled = false;
+  if (a.stability_horizons) {
+    if (a.no_stability)
+      throw rb::InputError("--no-stability cannot go with --stability-horizons", "stability-horizons");
+    const std::vector<double> horizons = rb::parse_stability_horizons(*a.stability_horizons, "stability-horizons");
+    // without a preset's study: the default preset's scenes and methods
+    if (!spec.stability.enabled) spec.stability = rb::preset("default").stability;
+    spec.stability.horizons = horizons;
+  }
   if (a.no_finer_steps) spec.extend_ladders = false;
   for (const std::string& name : spec.stability.integrators)
     if (spec.stability.enabled) (void)rb::find_integrator(name);
@@ -330,16 +381,14 @@ int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_
     spec.dt_out = a.dt_out;
   }
   if (a.t_end) {
-    if (!(*a.t_end > 0.0 && std::isfinite(*a.t_end)))
-      throw rb::InputError("the end time must be a finite number > 0", "t-end");
+    check_t_end(*a.t_end);
     spec.t_end = *a.t_end;
   }
   spec.cache_dir = a.cache;
-  if (!a.shard.empty()) {
-    if (std::sscanf(a.shard.c_str(), "%d/%d", &spec.shard_index, &spec.shard_count) != 2 || spec.shard_count < 1 ||
-        spec.shard_index < 0 || spec.shard_index >= spec.shard_count)
-      throw rb::InputError("expected i/n with 0 <= i < n, got '" + a.shard + "'", "shard");
-  }
+  if (a.shard) std::tie(spec.shard_index, spec.shard_count) = rb::parse_shard(*a.shard);
+  // the report's place and the cache folder, before any reference or run
+  std::optional<rb::OutputFile> report_file = open_output(a.out);
+  rb::check_cache_folder(a.cache);
   auto progress = [](const std::string& line) { std::fprintf(stderr, "rollbench: %s\n", line.c_str()); };
   progress("preparing scenes and references");
   const std::vector<rb::SweepScene> scenes = rb::prepare_scenes(spec, true, progress);
@@ -353,7 +402,7 @@ int run_sweep_command(const RunArgs& a, const std::vector<std::string>& tableau_
   const rb::StabilityResults stability = rb::run_stability(spec, progress);
   const rb::HorizonResults horizon = rb::run_horizon(spec, progress);
   const rb::Report report = rb::make_report(spec, scenes, runs, stability, horizon);
-  write_json(rb::to_json(report), a.out);
+  write_json(rb::to_json(report), report_file);
   std::printf("%s", rb::summary_table(report).c_str());
   std::printf("report written to %s\n", a.out.c_str());
   return 0;
@@ -370,8 +419,10 @@ int run_score(const ScoreArgs& a) {
     if (!a.scene.empty() || a.t_end || a.dt_out)
       throw rb::InputError("takes no scene, trajectory, --t-end or --dt-out: the peer file names them", "peers");
     if (a.out.empty()) throw rb::InputError("the report needs --out FILE", "out");
+    std::optional<rb::OutputFile> report_file = open_output(a.out);  // before any reference
+    rb::check_cache_folder(a.cache);
     const nlohmann::json report = rb::score_peers(a.peers, a.into, a.cache);
-    write_json(report, a.out);
+    write_json(report, report_file);
     std::printf("%s", rb::summary_table(rb::report_from_json(report, a.out)).c_str());
     std::printf("report with the runs of %s written to %s\n", a.peers.c_str(), a.out.c_str());
     return 0;
@@ -379,22 +430,23 @@ int run_score(const ScoreArgs& a) {
   if (!a.into.empty()) throw rb::InputError("goes with --peers", "into");
   if (a.scene.empty() || a.csv.empty())
     throw rb::InputError("expected SCENE TRAJECTORY.csv, or --peers PEERS.json", "score");
-  std::ifstream csv(a.csv);
-  if (!csv) throw rb::InputError("cannot open '" + a.csv + "' for reading", "trajectory");
+  // a regular file of at most 256 MiB, read before the scene's reference is computed
+  std::istringstream csv(rb::read_input_file(a.csv, rb::kTrajectoryInput, "trajectory"));
   rb::ScoreOptions options;
   options.cache_dir = a.cache;
   // given: a finite number > 0 (0 in ScoreOptions means "the default")
-  if (a.t_end && !(*a.t_end > 0.0 && std::isfinite(*a.t_end)))
-    throw rb::InputError("the end time must be a finite number > 0", "t-end");
+  if (a.t_end) check_t_end(*a.t_end);
   if (a.dt_out && !(*a.dt_out > 0.0 && std::isfinite(*a.dt_out)))
     throw rb::InputError("the output spacing must be a finite number > 0", "dt-out");
   options.t_end = a.t_end.value_or(0.0);
   options.dt_out = a.dt_out.value_or(0.0);
+  std::optional<rb::OutputFile> score_file = open_output(a.out);  // before the reference
+  rb::check_cache_folder(a.cache);
   const nlohmann::json score = rb::score_trajectory(a.scene, csv, a.csv, options);
   if (a.out.empty()) {
     std::printf("%s", json_text(score).c_str());
   } else {
-    write_json(score, a.out);
+    write_json(score, score_file);
     std::printf("score of %s on %s written to %s\n", a.csv.c_str(), a.scene.c_str(), a.out.c_str());
   }
   std::fprintf(stderr, "rollbench: timing is the user's: score measures accuracy and drift only (status %s)\n",
@@ -403,9 +455,10 @@ int run_score(const ScoreArgs& a) {
 }
 
 int run_merge(const std::vector<std::string>& inputs, const std::string& out) {
-  std::vector<rb::Report> shards;  // each file read once, named in what it lacks
+  std::optional<rb::OutputFile> merged = open_output(out);  // before the reports are read
+  std::vector<rb::Report> shards;                           // each file read once, named in what it lacks
   for (const std::string& path : inputs) shards.push_back(rb::report_from_json(rb::read_report(path), path));
-  write_json(rb::to_json(rb::merge_reports(shards)), out);
+  write_json(rb::to_json(rb::merge_named_reports(shards, inputs)), merged);
   std::printf("merged %zu reports into %s\n", inputs.size(), out.c_str());
   return 0;
 }
@@ -503,16 +556,29 @@ int main(int argc, char** argv) {
                       "end every scene at the smaller of this and its own t_end (default: each scene's t_end; the "
                       "quick preset's: 2)");
   run_cmd->add_option("--repeats", run.repeats,
-                      "timed repeats per run (default: the preset's; quick 2, default 3, full 7, regime 3)");
-  run_cmd->add_option("--jobs", run.jobs, "threads for the accuracy runs (default: 2)");
-  run_cmd->add_option("--shard", run.shard, "i/n: run one slice of the sweep (join with `rollbench merge`)");
+                      "timed repeats per run (default: the preset's; quick 2, default 3, full 7, regime 3), 0 to "
+                      "1000");
+  run_cmd->add_option("--jobs", run.jobs,
+                      "threads for the accuracy runs (default: 2), 1 to 1024; at most one per core is used");
+  run_cmd->add_option("--shard", run.shard,
+                      "i/n with 0 <= i < n <= 100000: run one slice of the sweep (join with `rollbench merge`)");
   run_cmd->add_option("--cache", run.cache, "directory for cached reference solutions");
   run_cmd->add_flag("--no-stability", run.no_stability, "skip the stability study of the preset");
+  run_cmd->add_option("--stability-horizons", run.stability_horizons,
+                      "the stability study's horizons in s, increasing, e.g. 10,100,1000 (the default): the "
+                      "drift-limited step and the blow-up step at each; runs the study (the default preset's "
+                      "scenes) where the preset has none");
   run_cmd->add_flag("--no-finer-steps", run.no_finer_steps,
                     "keep the step ladder as given: no finer steps for pre-asymptotic order fits");
   run_cmd->add_option("--horizon-steps", run.horizon_steps,
                       "run the horizon study with this many fixed steps per run, e.g. 1e5 or 1e6 (the default "
                       "preset's: 1e6; full: 1e7)");
+  run_cmd->add_option("--horizon-steps-max", run.horizon_steps_max,
+                      "where a horizon run's growth class is undecided, run it again at 10 times the steps up to "
+                      "this many, e.g. 1e7 (default: --horizon-steps, no further decade)");
+  run_cmd->add_option("--horizon-cpu-max", run.horizon_cpu_max,
+                      "seconds of CPU a further decade's run may take, predicted as 10 times the run before it "
+                      "(default: 600)");
   const rb::HorizonSpec study = rb::preset("default").horizon;
   run_cmd->add_option("--horizon-scenes", run.horizon_scenes,
                       "the horizon study's scenes (default: " + join_names(study.scenes) + ")");

@@ -46,14 +46,17 @@
 // (a library's accepted step undone by restore) and retried at kLimitShrink
 // of its step; the run stops at y with that limit's status only when the
 // step can shrink no further (min_step_at), or at the state before y when y
-// itself is beyond it (checked then, by one evaluation). After the first
-// such refusal, or once a stage came near the curvature limit
-// (r max kappa >= 1/2), every accepted step's path between its stages is
-// checked as well (check_step_path): a step whose path goes beyond a limit
-// is undone and refused the same way, and one that moves the contact point
-// more than kNearLimitTravel radii is undone and retried shorter. The start
-// and the end get one evaluation each; all are counted in
-// Cost::validity_checks (docs/design.md).
+// itself is beyond it (checked then, by one evaluation). Every accepted
+// step that moved the contact point more than kPathSpacing radii (from its
+// chord and its stages' contact speeds, StageWatch::speed2) has its path
+// between its stages checked as well (check_step_path), whatever the output
+// spacing; after the first such refusal, or once a stage came near the
+// curvature limit (r max kappa >= 1/2), every step's path is, and a step
+// that moves the contact point more than kNearLimitTravel radii is undone
+// and retried shorter. A step whose path goes beyond a limit is undone and
+// refused the same way. The start and the end get one evaluation each; all
+// are counted in Cost::validity_checks (docs/design.md, "Validity along
+// every step").
 // A stepper adds its own counts (rhs_evals, ...) to cost; the driver counts
 // steps and rejections. A failure is thrown: StepFailure carries its status,
 // any other std::exception becomes Status::error with its message.

@@ -4,8 +4,8 @@
 // try next), its start and end checks, the trial step towards the next
 // output, the rules for an attempt that fails or goes beyond the model's
 // limits, and what becomes of an accepted step (its end check, its path
-// check near a limit, the outputs it reached, clamped or dense). A loop
-// adds only how its stepper protocol attempts a step.
+// check, the outputs it reached, clamped or dense). A loop adds only how its
+// stepper protocol attempts a step.
 //
 // Every call that ends the run keeps its result (result()); the loop then
 // leaves, as step_ahead() says no more, or attempt() false.
@@ -71,6 +71,7 @@ class AdaptiveRun {
     lands_ = t_ + h_ >= bound_ - min_step_at(bound_);
     h_try_ = lands_ ? bound_ - t_ : h_;
     limit_ = Validity();
+    cost().watch.speed2 = 0.0;  // the attempt's stages' own
     return true;
   }
 
@@ -152,9 +153,8 @@ class AdaptiveRun {
   // step shrinks by kLimitShrink, and the run stops at y only when the limit
   // is still met at the smallest step time resolves. From the first such
   // refusal on (as from the first stage near the curvature limit,
-  // StageWatch::near), every accepted step's path is checked too
-  // (check_step_path): the run is where a limit is, and a step could jump
-  // the region its stages missed.
+  // StageWatch::near), every accepted step's path is checked, however short
+  // (path_kept), and kept to kNearLimitTravel: the run is where a limit is.
   void refuse(const Validity& limit, double h_tried, InStep where) {
     check_paths_ = true;
     if (!y_checked_) {
@@ -172,7 +172,11 @@ class AdaptiveRun {
   // trial's bound). A step to a non-finite state or out of the domain ends
   // the run at y, with no output towards it (the model's limits were tested
   // at every stage); one whose path fails its check is undone; else the
-  // outputs it reached are recorded and it becomes the current state.
+  // outputs it reached are recorded and it becomes the current state. The
+  // path is checked (path_kept) for every step that moved the contact point
+  // more than kPathSpacing radii (short_step: from its chord and its stages'
+  // speeds; a shorter one is covered by its stages and the evaluations at
+  // its ends, by the steps from them), and for every step near a limit.
   template <class Stepper>
   void keep(Stepper& stepper, double t_new, double h_next, bool landed) {
     ++cost().steps;
@@ -182,8 +186,11 @@ class AdaptiveRun {
     stepper.state(y_new_);
     if (const Validity v = problem_.check_step(y_new_); v.status != Status::ok)
       return (void)end(book_.stop(v.status, v.reason, y_, t_old));
-    if (check_paths_ || cost().watch.near) [[unlikely]]
-      if (!path_kept(stepper, t_old)) return;
+    const bool near = check_paths_ || cost().watch.near;
+    const double chord2 = (contact_of(y_new_) - contact_of(y_)).squaredNorm();
+    const bool checked = near || !short_step(chord2, t_ - t_old, cost().watch.speed2, radius_);
+    if (checked) [[unlikely]]
+      if (!path_kept(stepper, t_old, near)) return;
     if constexpr (Stepper::dense_output) {
       if (!record_dense(stepper, t_old)) return;
     } else if (landed) {
@@ -194,6 +201,11 @@ class AdaptiveRun {
     t_before_ = t_old;
     y_ = y_new_;
     y_checked_ = false;
+    if (checked) [[unlikely]] {
+      slope_y_ = slope_new_;
+    } else {
+      slope_y_.known = false;
+    }
   }
 
   // Undoes the step just kept from t_old (refused after the fact): the
@@ -207,15 +219,21 @@ class AdaptiveRun {
     return h_tried;
   }
 
-  // A path beyond a limit between the stages, or a step too long to resolve
-  // the landscape near one (kNearLimitTravel): the step is undone and
-  // refused, or retried at the length that moves the contact point half as
-  // far. Whether the step stays.
+  // A path beyond a limit between the stages (check_step_path, with F(y)
+  // from the check of the step before when it had one, and at least
+  // kPathPointsMin points near a limit), or, near a limit, a step too long
+  // to resolve the landscape there (kNearLimitTravel): the step is undone
+  // and refused, or retried at the length that moves the contact point half
+  // as far. Whether the step stays (then F at its end is slope_new_).
   template <class Stepper>
-  bool path_kept(Stepper& stepper, double t_old) {
-    const PathCheck path = check_step_path(problem_, y_, y_new_, t_ - t_old, cost());
-    const double reach = kNearLimitTravel * problem_.model().params().radius;
-    if (path.limit.status == Status::ok && !(path.travel > reach)) return true;
+  bool path_kept(Stepper& stepper, double t_old, bool near) {
+    const PathCheck path = check_step_path(problem_, y_, y_new_, t_ - t_old, cost(), slope_y_,
+                                           std::sqrt(cost().watch.speed2), near ? kPathPointsMin : 0);
+    const double reach = kNearLimitTravel * radius_;
+    if (path.limit.status == Status::ok && !(near && path.travel > reach)) {
+      slope_new_ = path.end;
+      return true;
+    }
     const double h_tried = undo(stepper, t_old);
     if (path.limit.status != Status::ok) {
       refuse(path.limit, h_tried, InStep::path);
@@ -265,6 +283,7 @@ class AdaptiveRun {
   }
 
   const Problem& problem_;
+  const double radius_ = problem_.model().params().radius;
   const Tolerances tol_;
   RunBook book_;
   const double h_given_;  // options.h: the first step, or 0 for automatic
@@ -284,6 +303,9 @@ class AdaptiveRun {
   bool lands_ = false;
   Validity limit_;
   FlatState y_new_, y_out_;  // reused: no allocation in the loop
+  // F at y, when the path check of the step that reached it evaluated it;
+  // F at y_new, from the check of the step to it
+  PathSlope slope_y_, slope_new_;
 };
 
 }  // namespace rb

@@ -93,29 +93,125 @@ double initial_step(const Problem& problem, const FlatState& y0, const Tolerance
   return std::isfinite(h) && h > 0.0 ? h : 1e-3 * span;
 }
 
-PathCheck check_step_path(const Problem& problem, const FlatState& y0, const FlatState& y1, double h, Cost& cost) {
-  auto limit_of = [&](const ModelMargins& m) -> Validity {
-    ++cost.validity_checks;
-    return Problem::within_model(m) ? Validity{} : model_limit(problem, m);
+bool near_limit_at(const Problem& problem, const ModelMargins& m) {
+  if (m.near_curvature_limit()) return true;
+  // I + 2 r II = 3 I - 2 M, I = [[1 + fx^2, fx fy], [fx fy, 1 + fy^2]]
+  const double xx = 1.0 + m.slope_x * m.slope_x, yy = 1.0 + m.slope_y * m.slope_y;
+  const double a = 3.0 * xx - 2.0 * m.fit_xx, b = 3.0 * m.slope_x * m.slope_y - 2.0 * m.fit_xy;
+  const double c = 3.0 * yy - 2.0 * m.fit_yy;
+  const bool sharp_crest = (a <= 0.0) | (a * c - b * b <= 0.0);
+  // N_z = 1 / sqrt(1 + fx^2 + fy^2)
+  const BallParams& ball = problem.model().params();
+  const bool light = m.normal_force <= 0.5 * ball.mass * ball.gravity / std::sqrt(xx + m.slope_y * m.slope_y);
+  return sharp_crest | light;
+}
+
+namespace {
+
+// The cubic Hermite interpolant of a step of h through (y0, f0), (y1, f1).
+struct HermitePath {
+  const FlatState &y0, &f0, &y1, &f1;
+  double h;
+  template <class Out>
+  void at(double s, Out&& y) const {
+    const double s2 = s * s, s3 = s2 * s;
+    y = (2 * s3 - 3 * s2 + 1) * y0 + (h * (s3 - 2 * s2 + s)) * f0 + (3 * s2 - 2 * s3) * y1 + (h * (s3 - s2)) * f1;
+  }
+  Vec2 contact(double s) const {
+    const double s2 = s * s, s3 = s2 * s;
+    return (2 * s3 - 3 * s2 + 1) * contact_of(y0) + (h * (s3 - 2 * s2 + s)) * f0.segment<2>(kOffsetAlpha) +
+           (3 * s2 - 2 * s3) * contact_of(y1) + (h * (s3 - s2)) * f1.segment<2>(kOffsetAlpha);
+  }
+  // the largest distance between the contact points of n + 2 equally spaced parameters (the ends included)
+  double widest_gap(int n) const {
+    double widest = 0.0;
+    Vec2 before = contact_of(y0);
+    for (int i = 1; i <= n + 1; ++i) {
+      const Vec2 p = contact(static_cast<double>(i) / (n + 1));
+      widest = std::max(widest, (p - before).norm());
+      before = p;
+    }
+    return widest;
+  }
+};
+
+// How many equally spaced points between the ends put the interpolant's
+// contact points at most spacing apart: travel / spacing, raised while the
+// cubic's own points are further apart (its speed varies); at least
+// min_points, at most kPathPointsMax; a few where travel is not finite.
+int points_between(const HermitePath& path, double travel, double spacing, int min_points) {
+  if (!std::isfinite(travel)) return std::max(min_points, kPathPointsMin);
+  auto capped = [&](double n) {
+    return static_cast<int>(std::clamp(n, static_cast<double>(min_points), static_cast<double>(kPathPointsMax)));
   };
-  FlatState f0, f1, y, f;
+  int n = capped(std::ceil(travel / spacing) - 1.0);
+  for (int tries = 0; tries < 4 && n < kPathPointsMax; ++tries) {
+    const double widest = path.widest_gap(n);
+    if (!(widest > spacing)) break;  // also NaN: nothing to measure by
+    n = std::max(n + 1, capped(std::ceil((n + 1) * widest / spacing) - 1.0));
+  }
+  return n;
+}
+
+}  // namespace
+
+PathCheck check_step_path(const Problem& problem, const FlatState& y0, const FlatState& y1, double h, Cost& cost,
+                          const PathSlope& start, double stage_speed, int min_points) {
+  FlatState f0, y;
   ModelMargins m;
   PathCheck path;
-  problem.flat_rhs(y0.data(), f0.data(), m);
-  if ((path.limit = limit_of(m)).status != Status::ok) return path;
-  problem.flat_rhs(y1.data(), f1.data(), m);
-  if ((path.limit = limit_of(m)).status != Status::ok) return path;
+  bool near = false;  // the last point evaluated is near a limit
+  auto limit_at = [&](const FlatState& x, FlatState& f) -> Validity {
+    problem.flat_rhs(x.data(), f.data(), m);
+    ++cost.validity_checks;
+    ++cost.path_checks;
+    near = near_limit_at(problem, m);
+    return Problem::within_model(m) ? Validity{} : model_limit(problem, m);
+  };
+  bool near0 = start.near;
+  if (start.known) {
+    f0 = start.f;
+  } else {
+    if ((path.limit = limit_at(y0, f0)).status != Status::ok) return path;
+    near0 = near;
+  }
+  FlatState& f1 = path.end.f;
+  if ((path.limit = limit_at(y1, f1)).status != Status::ok) return path;
+  path.end.near = near;
+  path.end.known = true;
+
   const double chord = (contact_of(y1) - contact_of(y0)).norm();
   const double speed = std::max(f0.segment<2>(kOffsetAlpha).norm(), f1.segment<2>(kOffsetAlpha).norm());
   path.travel = std::max(chord, std::abs(h) * speed);
-  const double spacing = 0.25 * problem.model().params().radius;
-  const double wanted = std::isfinite(path.travel) ? std::ceil(path.travel / spacing) : kPathPointsMax;
-  const int n = static_cast<int>(std::clamp(wanted, double{kPathPointsMin}, double{kPathPointsMax}));
-  for (int i = 1; i <= n; ++i) {
-    const double s = static_cast<double>(i) / (n + 1), s2 = s * s, s3 = s2 * s;
-    y = (2 * s3 - 3 * s2 + 1) * y0 + (h * (s3 - 2 * s2 + s)) * f0 + (3 * s2 - 2 * s3) * y1 + (h * (s3 - s2)) * f1;
-    problem.flat_rhs(y.data(), f.data(), m);
-    if ((path.limit = limit_of(m)).status != Status::ok) return path;
+  const double travel = std::max(path.travel, std::abs(h) * stage_speed);
+  const double radius = problem.model().params().radius;
+  const HermitePath cubic{y0, f0, y1, f1, h};
+  const int n = points_between(cubic, travel, kPathSpacing * radius, min_points);
+  // points on the stretch (s_a, s_b), at most kPathFineSpacing radii apart
+  auto fine = [&](double s_a, double s_b) -> Validity {
+    const double gap = (cubic.contact(s_b) - cubic.contact(s_a)).norm();
+    const double wanted = std::ceil(gap / (kPathFineSpacing * radius)) - 1.0;
+    const int k = std::isfinite(wanted) ? static_cast<int>(std::clamp(wanted, 0.0, double{kPathPointsMax})) : 0;
+    FlatState f;
+    for (int j = 1; j <= k; ++j) {
+      cubic.at(s_a + (s_b - s_a) * j / (k + 1), y);
+      if (const Validity v = limit_at(y, f); v.status != Status::ok) return v;
+    }
+    return {};
+  };
+  FlatState f;
+  bool near_before = near0;
+  for (int i = 1; i <= n + 1; ++i) {
+    const double s = static_cast<double>(i) / (n + 1), s_before = static_cast<double>(i - 1) / (n + 1);
+    bool near_here = path.end.near;
+    if (i <= n) {
+      cubic.at(s, y);
+      if ((path.limit = limit_at(y, f)).status != Status::ok) return path;
+      near_here = near;
+    }
+    if (near_before || near_here) [[unlikely]]
+      if ((path.limit = fine(s_before, s)).status != Status::ok) return path;
+    near_before = near_here;
   }
   return path;
 }

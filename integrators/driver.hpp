@@ -147,22 +147,57 @@ std::string underflow_message(double h, double t);
 
 // The model's limits (curvature, lift-off) along the path of an accepted
 // step of h from y0 to y1, between its stages: a step whose stages all miss
-// a narrow region beyond a limit would otherwise cross it unseen. The path
-// is the cubic Hermite interpolant of the flat state through y0, F(y0), y1,
-// F(y1) (exact to O(h^4), whatever the stepper), checked at interior points
-// spaced so that the contact point moves at most a quarter of the ball's
-// radius between two (at least kPathPointsMin, at most kPathPointsMax).
-// Every evaluation is counted in cost.validity_checks. limit: the first
-// limit met, ok otherwise (also where the margins are not finite: a
-// non-finite path is the step's end check's to find); travel: the contact
-// point's path length over the step (from its chord and its end speeds).
-inline constexpr int kPathPointsMin = 3;
-inline constexpr int kPathPointsMax = 64;
+// a narrow region beyond a limit would otherwise cross it unseen
+// (docs/design.md, "Validity along every step"). The path is the cubic
+// Hermite interpolant of the flat state through y0, F(y0), y1, F(y1) (exact
+// to O(h^4), whatever the stepper). Checked: its ends, then points on it
+// whose contact points are at most kPathSpacing ball radii apart
+// (consecutive ones, straight-line distance; at least min_points between
+// the ends), and around a point near a limit (near_limit_at) the stretches
+// to its neighbours again, at points at most kPathFineSpacing radii apart.
+// The number of points between the ends starts from the contact travel (from
+// the chord and the largest of the ends' and the stages' contact speeds,
+// stage_speed), capped at kPathPointsMax. start: F(y0) when a check before
+// evaluated it (the end of the step before), else evaluated here. Every
+// evaluation is counted in cost.validity_checks. limit: the first limit
+// met, ok otherwise (also where the margins are not finite: a non-finite
+// path is the step's end check's to find); travel: the contact point's path
+// length over the step from its chord and its end speeds (the near-limit
+// rule, kNearLimitTravel); end: F(y1), for the next step.
+inline constexpr double kPathSpacing = 1.0 / 8;
+inline constexpr double kPathFineSpacing = 1.0 / 32;
+inline constexpr int kPathPointsMin = 3;  // between the ends, near a limit
+inline constexpr int kPathPointsMax = 4096;
+// F at a state the path check evaluated, and whether it is near a limit.
+struct PathSlope {
+  FlatState f;
+  bool near = false;
+  bool known = false;
+};
 struct PathCheck {
   Validity limit;
   double travel = 0.0;
+  PathSlope end;
 };
-PathCheck check_step_path(const Problem& problem, const FlatState& y0, const FlatState& y1, double h, Cost& cost);
+PathCheck check_step_path(const Problem& problem, const FlatState& y0, const FlatState& y1, double h, Cost& cost,
+                          const PathSlope& start = {}, double stage_speed = 0.0, int min_points = 0);
+// Whether margins m were taken near one of the model's limits, where the
+// path check looks closer: the landscape sharply curved (r times a
+// principal curvature of either sign at least 1/2 in size: from the fit
+// M = I - r II, I -+ 2 r II not positive definite; the concave half is
+// ModelMargins::near_curvature_limit) or the normal force at most half the
+// weight's share along the normal (m g0 N_z / 2). Non-finite margins are
+// not near.
+bool near_limit_at(const Problem& problem, const ModelMargins& m);
+// Whether a step of h that moved the contact point by sqrt(chord2), its
+// stages' contact speeds at most sqrt(stage_speed2), moved it at most
+// kPathSpacing radii (squares: no root a step): such a step is covered by
+// its stages and its ends (the stages of the step from each) and needs no
+// path check far from the limits. False for NaN.
+inline bool short_step(double chord2, double h, double stage_speed2, double radius) {
+  const double reach2 = kPathSpacing * radius * kPathSpacing * radius;
+  return (chord2 <= reach2) & (h * h * stage_speed2 <= reach2);
+}
 
 // Near the curvature limit a step may move the contact point at most this
 // many ball radii: a longer one cannot resolve the landscape at the scale

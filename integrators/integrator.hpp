@@ -78,7 +78,18 @@ struct StageWatch {
   // some stage of the run came near the curvature limit
   // (ModelMargins::near_curvature_limit); never cleared
   bool near = false;
+  // the largest squared contact speed |alpha'|^2 of a stage since the
+  // adaptive driver last cleared it (each attempt): with the step's length
+  // it estimates how far the step moved the contact point (AdaptiveRun::keep)
+  double speed2 = 0.0;
 };
+
+// The cost axis in rhs-equivalents (docs/formats.md, "rhs_equivalents"):
+// linear algebra is counted by its floating-point operations, at this many
+// to one evaluation of F: 2 * 14^2, one forward and back substitution with
+// a factored 14x14 matrix (measured at 1.4 to 2 evaluations of F; a 14x14
+// LU decomposition's (2/3) 14^3 operations, 4.7 by this rate, at 4 to 5).
+inline constexpr double kFlopsPerRhs = 392.0;
 
 // Cost of a run, counted the same way by every integrator.
 struct Cost {
@@ -94,22 +105,61 @@ struct Cost {
   // converge (each ends its run with status error)
   long newton_iterations = 0;
   long newton_failures = 0;
+  // What an implicit method pays besides F, for rhs_equivalents(): the
+  // columns of its Jacobians (one AD direction each, or one evaluation of F
+  // by finite differences: 14 for the flat Jacobian, 5 for dla2's), the
+  // passes over the model inside its Newton iterations that are no
+  // evaluations of F (dg2's energy and gradient, dla2's residual), each
+  // counted as one, its LU decompositions, and the operations of its linear
+  // algebra: (2/3) d^3 per decomposition of a d x d Newton matrix, 2 d^2 per
+  // solve with it (one a Newton iteration), and lie-gauss's change of
+  // variables. A library's own linear algebra (GSL's implicit steppers) is
+  // not seen, and is not counted.
+  long jacobian_columns = 0;
+  long model_passes = 0;
+  long lu_decompositions = 0;
+  double linear_algebra_flops = 0.0;
   // evaluations whose validity margins were tested against the model's
   // limits (lift-off, curvature): every stage of every step (accepted or
   // rejected), plus the explicit checks of the start, the end and a stop
   // (docs/design.md); a starting-step guess's evaluations are not among them
   long validity_checks = 0;
+  // of those, the evaluations on the paths of adaptive steps between their
+  // stages (check_step_path, docs/design.md "Validity along every step")
+  long path_checks = 0;
   StageWatch watch;  // not reported: the driver's view of the current step
+
+  // The run's cost in evaluations of F: rhs_evals + jacobian_columns +
+  // model_passes + linear_algebra_flops / kFlopsPerRhs. rhs_evals for an
+  // explicit method; for an implicit one, what a Newton iteration costs
+  // beyond its stages is in it (dla2: 1 rhs a step, 13 to 16 rhs-equivalents).
+  double rhs_equivalents() const {
+    return static_cast<double>(rhs_evals + jacobian_columns + model_passes) + linear_algebra_flops / kFlopsPerRhs;
+  }
+  // One LU decomposition of a d x d Newton matrix, counted.
+  void note_decomposition(long d) {
+    ++lu_decompositions;
+    linear_algebra_flops += 2.0 / 3.0 * static_cast<double>(d * d * d);
+  }
 
   // One stage's margins: counted, and kept when beyond a limit. Branch-free
   // but for the rare failure; inlined into every stage (out of line in the
   // adaptive steppers it cost 30 instructions a step). WatchNear = false
-  // leaves watch.near alone: for a stepper run only by drive_fixed_step,
-  // which never reads it (the test cost about 20 instructions a stage).
+  // leaves watch.near and watch.speed2 alone: for a stepper run only by
+  // drive_fixed_step, which never reads them (the test cost about 20
+  // instructions a stage).
+  // alpha_dot: the stage's contact velocity (alpha'), for watch.speed2;
+  // nullptr for a state that is no stage.
   template <bool WatchNear = true>
-  [[gnu::always_inline]] void note(const ModelMargins& m) {
+  [[gnu::always_inline]] void note(const ModelMargins& m, const double* alpha_dot = nullptr) {
     ++validity_checks;
-    if constexpr (WatchNear) watch.near |= m.near_curvature_limit();
+    if constexpr (WatchNear) {
+      watch.near |= m.near_curvature_limit();
+      if (alpha_dot) {
+        const double s2 = alpha_dot[0] * alpha_dot[0] + alpha_dot[1] * alpha_dot[1];
+        watch.speed2 = s2 > watch.speed2 ? s2 : watch.speed2;
+      }
+    }
     if (!Problem::within_model(m)) [[unlikely]] {
       if (!watch.beyond) watch.first = m;
       watch.beyond = true;
@@ -124,13 +174,13 @@ struct Cost {
 [[gnu::always_inline]] inline void stage_flat_rhs(const Problem& problem, const double* y, double* dy, Cost& cost) {
   ModelMargins m;
   problem.flat_rhs(y, dy, m);
-  cost.note(m);
+  cost.note(m, dy + kOffsetAlpha);
 }
 // The margins come back by value, so that they stay in registers.
 template <bool WatchNear = true>
 [[gnu::always_inline]] inline void stage_lie_rhs(const Problem& problem, const Mat3& R, const double* z, double* omega,
                                                  double* dz, Cost& cost) {
-  cost.note<WatchNear>(problem.model().lie_rhs_margins(R, z, omega, dz));
+  cost.note<WatchNear>(problem.model().lie_rhs_margins(R, z, omega, dz), dz + 3);  // z = (v, alpha)
 }
 // The same on the model's code path General (RollingBall::has_inertia()),
 // fixed at compile time by a stepper that chose it once per run.
@@ -139,7 +189,7 @@ template <bool General, bool WatchNear = true>
                                                          double* omega, double* dz, Cost& cost) {
   ModelMargins m;
   problem.model().lie_rhs_on_path<General>(R, z, omega, dz, m);
-  cost.note<WatchNear>(m);
+  cost.note<WatchNear>(m, dz + 3);
 }
 
 // The states at the recorded output times, in order.

@@ -3,14 +3,14 @@
 #include <algorithm>
 #include <boost/multiprecision/cpp_int.hpp>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 
 #include "integrators/order_conditions.hpp"
 #include "problems/input_error.hpp"
+#include "problems/input_file.hpp"
+#include "problems/json_limits.hpp"
+#include "problems/safe_name.hpp"
 
 namespace rb {
 
@@ -27,32 +27,65 @@ std::string list_of(const std::vector<std::string>& names) {
   return s;
 }
 
-// nlohmann's message without its "[json.exception.parse_error.101] " prefix
-std::string without_prefix(const std::string& what) {
-  const auto p = what.find("] ");
-  return p == std::string::npos ? what : what.substr(p + 2);
-}
+// No array of a tableau file holds more: butcher's s + 1 rows of s + 1.
+constexpr std::size_t kMaxArrayEntries = kMaxStages + 1;
 
 // The document, with a key given twice refused (nlohmann keeps the last one
-// silently) and a number beyond a double (1e400) named by its key.
+// silently) and a number beyond a double (1e400) named by its key. The
+// limits come first: the nesting before parsing, an array's length as it is
+// parsed (a 2000-stage tableau is refused at its 34th entry, before the
+// 4 million coefficients are built).
 json parse_json_text(std::string_view text) {
+  if (const std::size_t at = json_too_deep_at(text); at != std::string_view::npos)
+    throw InputError("nests deeper than " + std::to_string(kMaxJsonDepth) + " levels (at byte " +
+                     std::to_string(at + 1) + ")");
   std::vector<std::set<std::string>> seen;  // the keys of each object being read
-  std::string last_key;
+  std::vector<std::size_t> entries;         // of each container being read; counted for arrays
+  std::vector<bool> in_array;
+  std::string last_key, top_key;  // top_key: the key of the file's own object the value is under
+  const auto count_entry = [&] {
+    if (!in_array.empty() && in_array.back() && ++entries.back() > kMaxArrayEntries)
+      throw InputError("holds an array of more than " + std::to_string(kMaxArrayEntries) +
+                           " entries; a tableau has 1 to " + std::to_string(kMaxStages) + " stages",
+                       top_key);
+  };
+  const auto open = [&](bool array) {
+    count_entry();
+    in_array.push_back(array);
+    entries.push_back(0);
+  };
+  const auto close = [&] {
+    in_array.pop_back();
+    entries.pop_back();
+  };
   const json::parser_callback_t track = [&](int, json::parse_event_t event, json& parsed) {
-    if (event == json::parse_event_t::object_start) seen.emplace_back();
-    if (event == json::parse_event_t::object_end) seen.pop_back();
-    if (event == json::parse_event_t::key) {
-      last_key = parsed.get<std::string>();
-      if (!seen.back().insert(last_key).second) throw InputError("the key appears more than once", last_key);
+    switch (event) {
+      case json::parse_event_t::object_start:
+        open(false);
+        seen.emplace_back();
+        break;
+      case json::parse_event_t::object_end:
+        close();
+        seen.pop_back();
+        break;
+      case json::parse_event_t::array_start: open(true); break;
+      case json::parse_event_t::array_end: close(); break;
+      case json::parse_event_t::value: count_entry(); break;
+      case json::parse_event_t::key:
+        last_key = escaped_excerpt(parsed.get<std::string>());
+        if (in_array.size() == 1) top_key = last_key;
+        if (!seen.back().insert(parsed.get<std::string>()).second)
+          throw InputError("the key appears more than once", last_key);
+        break;
     }
     return true;
   };
   try {
     return json::parse(text, track);
   } catch (const json::parse_error& e) {
-    throw InputError("not JSON: " + without_prefix(e.what()));
+    throw InputError("not JSON: " + json_error_text(e.what()));
   } catch (const json::out_of_range& e) {
-    throw InputError("not a finite number: " + without_prefix(e.what()), last_key);
+    throw InputError("not a finite number: " + json_error_text(e.what()), last_key);
   }
 }
 
@@ -93,9 +126,9 @@ Coefficient coefficient_at(const json& v, const std::string& key, const std::str
     const auto p = integer_part(text.substr(from, slash == std::string::npos ? std::string::npos : slash - from));
     const auto q = slash == std::string::npos ? std::optional<std::int64_t>(1) : integer_part(text.substr(slash + 1));
     if (!p || !q || *q == 0)
-      throw InputError(
-          where + " is the string " + v.dump() + ", not a number or a fraction \"p/q\" (integers up to 2^53, q > 0)",
-          key);
+      throw InputError(where + " is the string \"" + escaped_excerpt(text) +
+                           "\", not a number or a fraction \"p/q\" (integers up to 2^53, q > 0)",
+                       key);
     const Fraction f{negative ? -*p : *p, *q};
     return {static_cast<double>(f.numerator) / static_cast<double>(f.denominator), f};
   }
@@ -117,9 +150,14 @@ std::vector<Coefficient> numbers_at(const json& v, const std::string& key, long 
   return out;
 }
 
-// A square matrix: rows arrays of as many coefficients as there are rows.
-std::vector<std::vector<Coefficient>> square_at(const json& v, const std::string& key) {
+// A square matrix: rows arrays of as many coefficients as there are rows,
+// at most max_rows of them (checked before any is read).
+std::vector<std::vector<Coefficient>> square_at(const json& v, const std::string& key, std::size_t max_rows) {
   if (!v.is_array() || v.empty()) throw InputError("must be an array of rows (arrays of numbers)", key);
+  if (v.size() > max_rows)  // Tableau's own sentence, before a coefficient is read
+    throw InputError("a tableau needs 1 to " + std::to_string(kMaxStages) + " stages, got " +
+                         std::to_string(v.size() - (max_rows - kMaxStages)),
+                     key);
   const long n = static_cast<long>(v.size());
   std::vector<std::vector<Coefficient>> rows;
   for (std::size_t i = 0; i < v.size(); ++i) {
@@ -140,6 +178,12 @@ int integer_at(const json& v, const std::string& key, int lo, int hi) {
     throw InputError(
         "must be an integer from " + std::to_string(lo) + " to " + std::to_string(hi) + ", not " + v.dump(), key);
   return static_cast<int>(x);
+}
+
+// "an array", "a number": a value named by its type
+std::string a_type_name(const json& v) {
+  const std::string type = v.type_name();
+  return (type[0] == 'a' || type[0] == 'o' ? "an " : "a ") + type;
 }
 
 bool registry_safe(const std::string& name) {
@@ -189,7 +233,7 @@ Coefficients read_coefficients(const json& doc) {
   if (doc.contains("butcher")) {
     if (separate) throw InputError("give either butcher or c, A and b, not both", "butcher");
     // rows [c_i, a_i1 ... a_is], then [0, b_1 ... b_s]
-    const std::vector<std::vector<Coefficient>> m = square_at(doc["butcher"], "butcher");
+    const std::vector<std::vector<Coefficient>> m = square_at(doc["butcher"], "butcher", kMaxStages + 1);
     const std::size_t s = m.size() - 1;
     if (s == 0) throw InputError("needs at least 2 rows: [c_1, a_11], then [0, b_1]", "butcher");
     if (m[s][0].value != 0.0)
@@ -203,7 +247,7 @@ Coefficients read_coefficients(const json& doc) {
   } else {
     for (const char* key : {"c", "A", "b"})
       if (!doc.contains(key)) throw InputError("missing required key (or give butcher instead of c, A and b)", key);
-    const std::vector<std::vector<Coefficient>> rows = square_at(doc["A"], "A");
+    const std::vector<std::vector<Coefficient>> rows = square_at(doc["A"], "A", kMaxStages);
     const long s = static_cast<long>(rows.size());
     for (const auto& row : rows) a.insert(a.end(), row.begin(), row.end());
     const std::string why = " (A has " + std::to_string(s) + " rows)";
@@ -300,12 +344,15 @@ TableauFile read_tableau(const json& doc, const std::string& path) {
   if (!doc.is_object()) throw InputError(std::string("must be a JSON object, not ") + doc.type_name());
   for (const auto& item : doc.items())
     if (std::find(kKnownKeys.begin(), kKnownKeys.end(), item.key()) == kKnownKeys.end())
-      throw InputError("unknown key (known: " + list_of(kKnownKeys) + ")", item.key());
+      throw InputError("unknown key (known: " + list_of(kKnownKeys) + ")", escaped_excerpt(item.key()));
   if (!doc.contains("name")) throw InputError("missing required key", "name");
-  if (!doc["name"].is_string() || !registry_safe(doc["name"].get<std::string>()))
-    throw InputError(
-        "must be a string of 1 to 40 letters, digits, '-', '_' or '.' (it names rk-<name>), not " + doc["name"].dump(),
-        "name");
+  // the value is shown as a short excerpt, or by its type: never dumped whole
+  const json& given_name = doc["name"];
+  if (!given_name.is_string() || !registry_safe(given_name.get<std::string>()))
+    throw InputError("must be a string of 1 to 40 letters, digits, '-', '_' or '.' (it names rk-<name>), not " +
+                         (given_name.is_string() ? "\"" + escaped_excerpt(given_name.get<std::string>()) + "\""
+                                                 : a_type_name(given_name)),
+                     "name");
   const std::string name = doc["name"].get<std::string>();
   std::optional<int> order, err_order;
   if (doc.contains("order")) order = integer_at(doc["order"], "order", 1, kMaxConditionOrder);
@@ -361,17 +408,12 @@ TableauFile parse_tableau_file(std::string_view text, const std::string& path) {
   try {
     return read_tableau(parse_json_text(text), path);
   } catch (const InputError& e) {
-    throw InputError("tableau file '" + path + "': " + e.what());
+    throw InputError("tableau file '" + shown_path(path) + "': " + e.what());
   }
 }
 
 TableauFile load_tableau_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path))
-    throw InputError("cannot read the tableau file '" + path + "'", "tableau");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_tableau_file(text.str(), path);
+  return parse_tableau_file(read_input_file(path, kTableauInput, "tableau"), path);
 }
 
 }  // namespace rb

@@ -1,5 +1,9 @@
 #include "problems/energy.hpp"
 
+#include <limits>
+
+#include "problems/so3.hpp"
+
 namespace rb {
 
 double flat_energy(const RollingBall& ball, const FlatState& y, FlatState* grad) {
@@ -35,6 +39,15 @@ double flat_energy(const RollingBall& ball, const FlatState& y, FlatState* grad)
     Eigen::Map<RowMajorMat3>(g.data() + kOffsetR) = u * w.transpose();
   }
   return energy;
+}
+
+double energy_on_group(const RollingBall& ball, const FlatState& y) {
+  if (!ball.anisotropic()) return flat_energy(ball, y);
+  const Mat3 R = rotation_of(y);
+  if (!R.allFinite()) return std::numeric_limits<double>::quiet_NaN();
+  FlatState on_group = y;
+  set_rotation(on_group, project_to_so3(R));
+  return flat_energy(ball, on_group);
 }
 
 }  // namespace rb

@@ -171,6 +171,8 @@ std::vector<std::shared_ptr<const FirstIntegrals>> make_invariants(const Scene& 
   return out;
 }
 
+std::string_view kind_name(IntegralKind kind) { return kind == IntegralKind::kinematic ? "kinematic" : "dynamical"; }
+
 std::vector<std::string> invariant_names() { return {"chaplygin-plane", "routh-paraboloid", "routh-sphere"}; }
 
 }  // namespace rb

@@ -18,6 +18,10 @@
 #include <cstring>
 #include <filesystem>
 
+#include "problems/input_error.hpp"
+#include "problems/input_file.hpp"
+#include "problems/safe_path.hpp"
+
 namespace rb {
 namespace fs = std::filesystem;
 
@@ -46,9 +50,6 @@ constexpr std::size_t kSecretSize = 32;
 constexpr char kMagic[9] = "RBNATIV2";
 // what the MAC is of, so that the secret authenticates nothing else
 constexpr std::string_view kMacDomain = "rollbench native cache entry 2";
-// far above any entry; a bigger file is not read into memory
-constexpr off_t kMaxFileSize = off_t{256} << 20;
-
 std::string in_quotes(const std::string& s) { return "'" + s + "'"; }
 
 std::string octal_mode(mode_t mode) {
@@ -125,21 +126,14 @@ EntryRead read_checked(const CacheFolder& folder, const std::string& name, std::
     return EntryRead::refused;
   }
   if (why = distrust(st, what, trust); !why.empty()) return EntryRead::refused;
-  if (st.st_size > kMaxFileSize) {
-    why = what + " is too large (" + std::to_string(st.st_size) + " bytes)";
+  // its size checked before it is read, at most the limit read (problems/input_file.hpp)
+  try {
+    bytes = read_open_input(fd.get(), folder.path + "/" + name, kNativeCacheInput, "");
+  } catch (const InputError& e) {
+    why = e.message();
     return EntryRead::refused;
   }
-  char buf[65536];
-  for (;;) {
-    const ssize_t got = ::read(fd.get(), buf, sizeof buf);
-    if (got < 0 && errno == EINTR) continue;
-    if (got < 0) {
-      why = what + " cannot be read (" + std::strerror(errno) + ")";
-      return EntryRead::refused;
-    }
-    if (got == 0) return EntryRead::ok;
-    bytes.append(buf, static_cast<std::size_t>(got));
-  }
+  return EntryRead::ok;
 }
 
 // Makes the folder's secret and links it into place, unless another process
@@ -202,15 +196,23 @@ std::optional<CacheFolder> open_cache_folder(const std::string& path_in, std::st
   std::string path = path_in;
   while (path.size() > 1 && path.back() == '/') path.pop_back();  // a trailing '/' would follow a link
   const std::string what = "the cache folder " + in_quotes(path);
-  std::error_code ignored;
-  if (const fs::path parent = fs::path(path).parent_path(); !parent.empty()) fs::create_directories(parent, ignored);
-  if (::mkdir(path.c_str(), 0700) != 0 && errno != EEXIST) {
+  // its parents made as mkdir -p would, but reached by the path rule
+  // (safe_path.hpp): a link of another user's on the way is not followed
+  const fs::path as_path(path);
+  const std::string leaf = as_path.filename().string();
+  const std::string parent_path = as_path.has_parent_path() ? as_path.parent_path().string() : ".";
+  const OpenedFolder parent = open_folder(parent_path, MissingFolders::make);
+  if (!parent) {
+    why = "cannot create " + what + " (" + parent.why() + ")";
+    return std::nullopt;
+  }
+  if (::mkdirat(parent.fd.get(), leaf.c_str(), 0700) != 0 && errno != EEXIST) {
     why = "cannot create " + what + " (" + std::strerror(errno) + ")";
     return std::nullopt;
   }
   CacheFolder folder;
   folder.path = path;
-  folder.fd = UniqueFd(::open(path.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
+  folder.fd = UniqueFd(::openat(parent.fd.get(), leaf.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
   if (!folder.fd) {
     why = what + (errno == ELOOP || errno == ENOTDIR ? " is a symbolic link or not a folder"
                                                      : std::string(" cannot be opened (") + std::strerror(errno) + ")");

@@ -52,8 +52,10 @@ struct CacheFolder {
 };
 
 // Opens path as this user's cache folder, creating it (mode 0700; its
-// parents as usual) when missing, and reads or makes its secret; nullopt and
-// why (one sentence naming the path) when it is refused or cannot be had.
+// parents as mkdir -p would, reached by the path rule of safe_path.hpp: a
+// link of another user's on the way is refused) when missing, and reads or
+// makes its secret; nullopt and why (one sentence naming the path) when it
+// is refused or cannot be had.
 std::optional<CacheFolder> open_cache_folder(const std::string& path, std::string& why);
 
 // A new folder inside folder, prefix + random, mode 0700 and checked so

@@ -5,16 +5,16 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
 #include "problems/exact.hpp"
 #include "problems/input_error.hpp"
+#include "problems/input_file.hpp"
 #include "problems/invariants.hpp"
+#include "problems/json_limits.hpp"
 #include "problems/safe_name.hpp"
-#include "problems/utf8.hpp"
 
 namespace rb {
 
@@ -81,12 +81,10 @@ class SceneSax final : public nlohmann::json_sax<json> {
   }
   bool parse_error(std::size_t position, const std::string& last_token, const json::exception& ex) override {
     if (ex.id == 406) {
-      error = InputError("the number " + last_token + " is not a finite double", path());
+      error = InputError("the number " + escaped_excerpt(last_token) + " is not a finite double", path());
     } else {
-      // drop nlohmann's "[json.exception.parse_error.101] " prefix
-      std::string what = ex.what();
-      if (const auto p = what.find("] "); p != std::string::npos) what = what.substr(p + 2);
-      error = InputError("invalid JSON at byte " + std::to_string(position) + ": " + what);
+      // without nlohmann's prefix, and its "last read" cut to a short excerpt
+      error = InputError("invalid JSON at byte " + std::to_string(position) + ": " + json_error_text(ex.what()));
     }
     return false;
   }
@@ -103,7 +101,7 @@ class SceneSax final : public nlohmann::json_sax<json> {
   std::string path() const {
     std::string p;
     for (const Frame& f : frames_)
-      if (f.value->is_object() && !f.key.empty()) p = join_key(p, f.key);
+      if (f.value->is_object() && !f.key.empty()) p = join_key(p, escaped_excerpt(f.key));
     return p;
   }
   json* put(json v) {
@@ -121,6 +119,10 @@ class SceneSax final : public nlohmann::json_sax<json> {
 };
 
 json parse_json(std::string_view text) {
+  // before parsing: no walk of the document then recurses that deep
+  if (const std::size_t at = json_too_deep_at(text); at != std::string_view::npos)
+    throw InputError("the scene nests deeper than " + std::to_string(kMaxJsonDepth) + " levels (at byte " +
+                     std::to_string(at + 1) + ")");
   SceneSax sax;
   const bool ok = json::sax_parse(text, &sax);
   if (sax.error) throw *sax.error;
@@ -133,7 +135,8 @@ json parse_json(std::string_view text) {
 void reject_unknown_keys(const json& obj, const std::string& where, const std::vector<std::string>& known) {
   for (const auto& item : obj.items())
     if (std::find(known.begin(), known.end(), item.key()) == known.end())
-      throw InputError("unknown key (known here: " + list_of(known) + ")", join_key(where, item.key()));
+      throw InputError("unknown key (known here: " + list_of(known) + ")",
+                       join_key(where, escaped_excerpt(item.key())));
 }
 
 const json* optional_key(const json& obj, const char* key) {
@@ -313,19 +316,23 @@ void check_values(Scene& s) {
     throw InputError("the quaternion [w, x, y, z] must have unit norm, not " + num(norm), "start.orientation");
   start.orientation /= norm;
   check_finite(s.t_end, "t_end");
-  if (!(s.t_end > 0.0)) throw InputError("t_end must be > 0", "t_end");
+  // a normal number in stated bounds: a subnormal t_end (1e-323) makes
+  // every step underflow to 0, an absurd one asks for runs no study takes
+  if (!(s.t_end >= kMinTEnd && s.t_end <= kMaxTEnd))
+    throw InputError("t_end must be from 1e-6 to 1e7 (seconds), not " + num(s.t_end), "t_end");
   const std::vector<std::string> known = exact_names();
   if (s.exact != "none" && std::find(known.begin(), known.end(), s.exact) == known.end())
-    throw InputError("unknown exact solution '" + s.exact + "' (known: none, " + list_of(known) + ")", "exact");
+    throw InputError("unknown exact solution '" + escaped_excerpt(s.exact) + "' (known: none, " + list_of(known) + ")",
+                     "exact");
   // invariants: known names, each once; whether the landscape has them is
   // checked with the model (make_invariants)
   const std::vector<std::string> invariants = invariant_names();
   for (auto name = s.invariants.begin(); name != s.invariants.end(); ++name) {
     if (std::find(invariants.begin(), invariants.end(), *name) == invariants.end())
-      throw InputError("unknown invariant '" + valid_utf8(*name) + "' (known: " + list_of(invariants) + ")",
+      throw InputError("unknown invariant '" + escaped_excerpt(*name) + "' (known: " + list_of(invariants) + ")",
                        "invariants");
     if (std::find(s.invariants.begin(), name, *name) != name)
-      throw InputError("the invariant '" + *name + "' is named more than once", "invariants");
+      throw InputError("the invariant '" + escaped_excerpt(*name) + "' is named more than once", "invariants");
   }
 }
 
@@ -483,14 +490,12 @@ Scene checked_scene(Scene scene) {
 
 namespace {
 
+// a regular file of at most 1 MiB (problems/input_file.hpp), whoever names it:
+// the command line, a sweep's --scenes, a peer file's "scene"
 std::string read_scene_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in || std::filesystem::is_directory(path))
-    throw InputError("cannot read the scene file '" + path + "'", "scene");
-  std::ostringstream text;
-  text << in.rdbuf();
+  std::string text = read_input_file(path, kSceneInput, "scene");
   ++files_read;
-  return text.str();
+  return text;
 }
 
 }  // namespace
@@ -512,7 +517,7 @@ Scene load_scene(const std::string& name_or_path) {
   if (is_path) return load_scene_file(name_or_path);
   const std::vector<std::string> names = shipped_scene_names();
   if (std::find(names.begin(), names.end(), name_or_path) == names.end())
-    throw InputError("unknown scene '" + name_or_path + "' (shipped: " + list_of(names) +
+    throw InputError("unknown scene '" + escaped_excerpt(name_or_path) + "' (shipped: " + list_of(names) +
                          "; a scene file is given by a path ending in .json)",
                      "scene");
   return load_scene_file(std::string(RB_SCENE_DIR) + "/" + name_or_path + ".json");

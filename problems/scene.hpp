@@ -38,6 +38,12 @@ struct SceneStart {
 
 struct SceneModel;  // scene.cpp: the model a load compiled, and what it was made of
 
+// The range of a scene's t_end (seconds), and of every --t-end: a subnormal
+// one (1e-323) makes the steps underflow to 0, an absurd one asks for runs
+// no study takes (the longest shipped scene runs 15 s, the full regime grid
+// 1000 s, a drift run 10^4 s).
+inline constexpr double kMinTEnd = 1e-6, kMaxTEnd = 1e7;
+
 struct Scene {
   std::string name;
   std::string description;               // empty when the file has none
@@ -48,7 +54,7 @@ struct Scene {
   SceneBall ball;
   double gravity = 9.81;  // g0 >= 0; gravity is (0, 0, -g0)
   SceneStart start;
-  double t_end = 0.0;          // > 0
+  double t_end = 0.0;          // kMinTEnd to kMaxTEnd
   std::string exact = "none";  // a name of exact_names() or "none"
   // first integrals beyond the energy the scene declares (invariant_names()),
   // checked against the landscape and the ball on load

@@ -15,6 +15,7 @@ std::string_view status_name(Status status) {
     case Status::timeout: return "timeout";
     case Status::off_group: return "off-group";
     case Status::chart_limit: return "chart-limit";
+    case Status::solver: return "solver";
     case Status::error: return "error";
   }
   return "error";

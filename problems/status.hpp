@@ -16,6 +16,7 @@ enum class Status {
   timeout,         // an isolated plug-in's run passed its wall-clock limit and was killed
   off_group,       // a Lie-view plug-in returned R off SO(3): ||R^T R - I||_F > 1e-6
   chart_limit,     // a Lie step's stage left the exponential chart (|u| at dexpinv's pole)
+  solver,          // an implicit method's Newton iteration did not converge (not physics: its iterates are no states)
   error,           // a library error code or exception; see the message
 };
 

@@ -3,9 +3,13 @@
 lines, so that the table is never written by hand: `scripts/method_table.py [ROLLBENCH]` rewrites the block,
 `--check` only says whether it is current (exit 1 with the first differing line when not). ROLLBENCH defaults to
 build/release/rollbench."""
+import os
 import pathlib
 import subprocess
 import sys
+
+sys.path[0] = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from analysis import safe_files  # noqa: E402
 
 DOC = pathlib.Path(__file__).resolve().parent.parent / "docs" / "integrators.md"
 BEGIN = "<!-- method table: written by scripts/method_table.py from `rollbench list --markdown`; do not edit -->"
@@ -29,7 +33,7 @@ def main(argv):
     check = "--check" in argv
     args = [a for a in argv if a != "--check"]
     rollbench = args[0] if args else "build/release/rollbench"
-    text = DOC.read_text(encoding="utf-8")
+    text = safe_files.read_text(DOC, "doc")
     head, block, tail = split(text)
     table = generated(rollbench)
     if check:
@@ -40,7 +44,7 @@ def main(argv):
         print(f"{DOC}: the method table is not `rollbench list --markdown` (line {first + 1} of the table); run "
               "scripts/method_table.py", file=sys.stderr)
         return 1
-    DOC.write_text(head + BEGIN + "\n" + table + END + tail, encoding="utf-8")
+    safe_files.write_file(DOC, head + BEGIN + "\n" + table + END + tail)
     return 0
 
 

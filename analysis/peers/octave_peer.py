@@ -24,6 +24,7 @@ import tempfile
 
 import numpy as np
 
+from analysis import safe_files
 from analysis.peers import peer_file, problem_lib
 
 HERE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "octave")
@@ -51,40 +52,62 @@ def tool(name):
     return path
 
 
+def private_env():
+    """The environment of mkoctfile and Octave: the caller's, with the temporary folder the working folder (a
+    private one, `cwd`): mkoctfile pastes $TMPDIR into the shell commands it runs, so no text of the caller's
+    may stand there."""
+    return dict(os.environ, TMPDIR=".", TMP=".", TEMP=".")
+
+
 def build_oct_file(folder):
-    """rb_problem.oct from rb_problem.cc into folder."""
-    include = os.path.join(problem_lib.ROOT, "problems", "abi")
-    out = os.path.join(folder, "rb_problem.oct")
-    done = subprocess.run([tool("mkoctfile"), f"-I{include}", "-o", out, os.path.join(HERE, "rb_problem.cc"), "-ldl"],
-                          capture_output=True, text=True, cwd=folder)
+    """rb_problem.oct from rb_problem.cc, built in folder (private: this process made it); its path.
+
+    The source and its header are copied in and mkoctfile is given only their bare names, run in folder:
+    mkoctfile runs the compiler through a shell command line, so no path of the caller's is in it."""
+    shutil.copyfile(os.path.join(HERE, "rb_problem.cc"), os.path.join(folder, "rb_problem.cc"))
+    shutil.copyfile(os.path.join(problem_lib.ROOT, "problems", "abi", "rollbench_problem.h"),
+                    os.path.join(folder, "rollbench_problem.h"))
+    done = subprocess.run([tool("mkoctfile"), "-o", "rb_problem.oct", "rb_problem.cc", "-ldl"],
+                          capture_output=True, text=True, errors="backslashreplace", cwd=folder, env=private_env())
     if done.returncode != 0:
         raise OctaveError(f"mkoctfile failed: {done.stderr.strip()}")
-    return out
+    return os.path.join(folder, "rb_problem.oct")
 
 
-def octave_version():
-    done = subprocess.run([tool("octave-cli"), "--version"], capture_output=True, text=True)
+def octave_command(code):
+    """octave-cli's argument vector for code: no startup file (--norc: neither ~/.octaverc, ./.octaverc nor the
+    site's), this package's folder first on the path; run with cwd a private folder, so that nothing in the caller's
+    working folder (a planted solve_peers.m) is found first."""
+    return [tool("octave-cli"), "--no-gui", "--norc", "--no-history", "--no-window-system", "--path", HERE,
+            "--eval", code]
+
+
+def octave_version(work):
+    done = subprocess.run([tool("octave-cli"), "--norc", "--version"], capture_output=True, text=True,
+                          errors="backslashreplace", cwd=work, env=private_env())
     return done.stdout.splitlines()[0] if done.returncode == 0 and done.stdout else "unknown"
 
 
-def solve_scene(library, scene, t_end, dt_out, methods, tols, repeats, rhs_calls, oct_dir, work):
-    """Octave on one scene: its result (the JSON solve_peers.m writes)."""
+def solve_scene(library, scene, t_end, dt_out, methods, tols, repeats, rhs_calls, work):
+    """Octave on one scene: its result (the JSON solve_peers.m writes). work: the private folder that holds
+    rb_problem.oct, Octave's working folder; the spec names its files relative to it."""
     with problem_lib.Problem(problem_lib.load_library(library), scene, t_end) as problem:
         times = peer_file.output_times(dt_out or peer_file.ERROR_DT, problem.t_end)
-    spec = {"library": os.path.abspath(library), "scene": scene, "t_end": float(t_end), "times": times.tolist(),
-            "methods": methods, "tols": list(tols), "repeats": repeats, "rhs_calls": rhs_calls, "out_dir": work,
-            "result_file": os.path.join(work, "result.json")}
-    spec_file = os.path.join(work, "spec.json")
-    with open(spec_file, "w") as out:
-        json.dump(spec, out)
-    command = f"addpath('{oct_dir}'); addpath('{HERE}'); solve_peers('{spec_file}');"
-    done = subprocess.run([tool("octave-cli"), "--no-gui", "--norc", "--no-window-system", "--eval", command],
-                          capture_output=True, text=True)
-    if not os.path.exists(spec["result_file"]):
-        raise OctaveError(f"octave failed on scene '{scene}' (exit {done.returncode}): {done.stderr.strip()[-800:]}")
-    with open(spec["result_file"]) as f:
-        result = json.load(f)
-    os.remove(spec["result_file"])
+    # a scene file's path made absolute, as Octave runs elsewhere (a path: with '/' or ending in .json, as
+    # rb::load_scene tells them; a shipped scene's name as is)
+    is_path = "/" in scene or (len(scene) > 5 and scene.endswith(".json"))
+    spec = {"library": os.path.abspath(library), "scene": os.path.abspath(scene) if is_path else scene,
+            "t_end": float(t_end), "times": times.tolist(), "methods": methods, "tols": list(tols),
+            "repeats": repeats, "rhs_calls": rhs_calls, "out_dir": ".", "result_file": "result.json"}
+    safe_files.write_file(os.path.join(work, "spec.json"), json.dumps(spec))
+    done = subprocess.run(octave_command("solve_peers('spec.json');"), capture_output=True, text=True,
+                          errors="backslashreplace", cwd=work, env=private_env())
+    result_file = os.path.join(work, spec["result_file"])
+    if not os.path.exists(result_file):
+        raise OctaveError(f"octave failed on scene {safe_files.shown(scene)} (exit {done.returncode}): "
+                          f"{done.stderr.strip()[-800:]}")
+    result = json.loads(safe_files.read_text(result_file, "peer result", safe_files.PEER_FILE_LIMIT))
+    os.remove(result_file)
     return result, times
 
 
@@ -103,7 +126,8 @@ def steps_of(run):
 def peer_run(problem, run, times, work, folder, stem):
     """One Octave solve as a peer-file run, its trajectory written."""
     name, order, order_text, uses_jacobian = METHODS[run["method"]]
-    raw = np.fromfile(os.path.join(work, run["states"]), dtype=np.float64)
+    raw = np.frombuffer(safe_files.read_bytes(os.path.join(work, run["states"]), "peer result",
+                                              safe_files.TRAJECTORY_LIMIT), dtype=np.float64)
     outputs = raw.reshape(-1, problem_lib.STATE_SIZE).T[:, :int(run["outputs"])]
     rows, checks, status, message, stop_time = peer_file.checked_trajectory(
         problem, times, outputs, run["status"], run["message"], float(run["t_reached"]))
@@ -119,14 +143,19 @@ def peer_run(problem, run, times, work, folder, stem):
 
 
 def run_peers(library, scenes, methods, tols, t_end, dt_out, repeats, rhs_calls, folder, progress=print):
-    os.makedirs(folder, exist_ok=True)
+    with safe_files.output_folder(folder) as out:
+        return _run_peers(library, scenes, methods, tols, t_end, dt_out, repeats, rhs_calls, out, progress)
+
+
+def _run_peers(library, scenes, methods, tols, t_end, dt_out, repeats, rhs_calls, folder, progress):
     lib = problem_lib.load_library(library)
     runs, costs = [], []
+    # private (0700, made here): mkoctfile and Octave run in it, and it holds their every file
     with tempfile.TemporaryDirectory() as work:
-        oct_dir = os.path.dirname(build_oct_file(work))
+        build_oct_file(work)
+        versions = {"octave": octave_version(work)}
         for scene in scenes:
-            result, times = solve_scene(library, scene, t_end, dt_out, methods, tols, repeats, rhs_calls, oct_dir,
-                                        work)
+            result, times = solve_scene(library, scene, t_end, dt_out, methods, tols, repeats, rhs_calls, work)
             cost = dict(result["rhs_cost"], scene=scene)
             costs.append(cost)
             with problem_lib.Problem(lib, scene, t_end) as problem:
@@ -137,14 +166,13 @@ def run_peers(library, scenes, methods, tols, t_end, dt_out, repeats, rhs_calls,
                     runs.append(entry)
                     progress(f"octave_peer: {problem.name} {run['method']} tol {run['tol']:.0e}: {entry['status']}, "
                              f"{entry['rhs_evals']} rhs, {np.median(entry['wall_s']) * 1e3:.1f} ms")
-    versions = {"octave": octave_version()}
     return peer_file.write_peer_file(folder, "octave", versions, library, problem_lib.ABI_VERSION, t_end, dt_out,
                                      TIMING, costs, runs)
 
 
 def main(argv=None):
     return peer_file.main(argv, __doc__, "octave_peer", METHODS, "Octave's", DEFAULT_TOLS, 2000, run_peers,
-                          (problem_lib.ProblemError, OctaveError))
+                          (problem_lib.ProblemError, OctaveError, safe_files.InputFileError))
 
 
 if __name__ == "__main__":

@@ -7,6 +7,8 @@ import os
 
 import numpy as np
 
+from analysis import safe_files
+
 ERROR_DT = 0.25  # the runner's error grid (rollbench run without --dt-out)
 SCHEMA = "rollbench.peers/1"
 
@@ -46,24 +48,21 @@ def checked_trajectory(problem, times, outputs, status, message, stop_time):
 
 
 def write_trajectory(problem, folder, stem, rows):
-    """trajectories/STEM.csv under folder, starting at the start state; the path relative to folder."""
-    path = os.path.join("trajectories", f"{stem}.csv")
-    os.makedirs(os.path.join(folder, "trajectories"), exist_ok=True)
-    with open(os.path.join(folder, path), "w") as out:
-        out.write(csv_header(problem) + "\n" + csv_row(problem, 0.0, problem.y0) + "\n")
-        out.writelines(r + "\n" for r in rows)
-    return path
+    """trajectories/STEM.csv under folder (a path or a safe_files.OutputFolder), starting at the start state; the
+    path relative to folder."""
+    text = "".join(r + "\n" for r in [csv_header(problem), csv_row(problem, 0.0, problem.y0), *rows])
+    with safe_files.output_folder(folder) as out, out.subfolder("trajectories") as trajectories:
+        trajectories.write_text(f"{stem}.csv", text)
+    return os.path.join("trajectories", f"{stem}.csv")
 
 
 def write_peer_file(folder, peer, versions, library, abi_version, t_end, dt_out, timing, rhs_cost, runs):
-    """folder/peers.json; its path."""
+    """folder/peers.json (folder: a path or a safe_files.OutputFolder); its path."""
     peers = {"schema": SCHEMA, "peer": peer, "versions": versions, "library": os.path.abspath(library),
              "abi_version": abi_version, "t_end": t_end if t_end else None, "dt_out": dt_out if dt_out else None,
              "timing": timing, "rhs_cost": rhs_cost, "runs": runs}
-    path = os.path.join(folder, "peers.json")
-    with open(path, "w") as out:
-        json.dump(peers, out, indent=1)
-    return path
+    with safe_files.output_folder(folder) as out:
+        return out.write_text("peers.json", json.dumps(peers, indent=1))
 
 
 def main(argv, doc, peer, methods, owner, default_tols, rhs_calls, run_peers, errors):
@@ -97,11 +96,19 @@ def main(argv, doc, peer, methods, owner, default_tols, rhs_calls, run_peers, er
         ap.error(f"--tol: expected comma-separated numbers, got {a.tol!r}")
     if not all(t > 0 for t in tols) or a.repeats < 1 or a.rhs_calls < 1 or a.t_end < 0 or a.dt_out < 0:
         ap.error("tolerances, --repeats and --rhs-calls must be > 0, --t-end and --dt-out >= 0")
+    # the peer file holds the scenes and the library as JSON text: a path that is not UTF-8 cannot be written there
+    for option, path in [("--library", a.library)] + [("--scene", s) for s in a.scene]:
+        try:
+            path.encode("utf-8")
+        except UnicodeEncodeError:
+            print(f"{peer}: {option} {safe_files.shown(path)} is not UTF-8; the peer file records it as JSON text, "
+                  "so name it by a UTF-8 path", file=sys.stderr)
+            return 2
     try:
         path = run_peers(a.library, a.scene, chosen, tols, a.t_end, a.dt_out, a.repeats, a.rhs_calls, a.out,
                          progress=lambda line: print(line, file=sys.stderr))
-    except errors as e:
+    except (errors if isinstance(errors, tuple) else (errors,)) + (safe_files.OutputFileError,) as e:
         print(f"{peer}: {e}", file=sys.stderr)
         return 2
-    print(f"peer file written to {path}")
+    print(f"peer file written to {safe_files.shown(path)}")
     return 0

@@ -63,9 +63,10 @@ class Problem:
     def __init__(self, lib, scene, t_end=0.0):
         self.lib = lib
         error = ctypes.create_string_buffer(1024)
-        handle = lib.rb_problem_open(scene.encode(), float(t_end), error, len(error))
+        # the path's bytes as typed (os.fsencode: a name that is not UTF-8 too); the library escapes it in messages
+        handle = lib.rb_problem_open(os.fsencode(scene), float(t_end), error, len(error))
         if not handle:
-            raise ProblemError(error.value.decode())
+            raise ProblemError(error.value.decode("utf-8", "backslashreplace"))
         self.handle = handle
         self.name = lib.rb_problem_name(handle).decode()
         self.t_end = lib.rb_problem_t_end(handle)

@@ -14,7 +14,6 @@ measured apart (rhs_cost) so that readers can subtract it.
 
     /usr/bin/python3 -m analysis.peers.scipy_peer --scene chaplygin-valley --t-end 2 --out out/peers
 """
-import os
 import platform
 import sys
 import time
@@ -23,6 +22,7 @@ import numpy as np
 import scipy
 from scipy.integrate import solve_ivp
 
+from analysis import safe_files
 from analysis.peers import peer_file, problem_lib
 
 # name: (report name, declared order, the order as SciPy's documentation states it, uses the Jacobian)
@@ -109,7 +109,12 @@ def run_one(problem, method, tol, times, repeats, folder, stem):
 
 
 def run_peers(library, scenes, methods, tols, t_end, dt_out, repeats, rhs_calls, folder, progress=print):
-    os.makedirs(os.path.join(folder, "trajectories"), exist_ok=True)
+    # the output folder opened first, under the path rule (analysis/safe_files.py); every file goes through it
+    with safe_files.output_folder(folder) as out:
+        return _run_peers(library, scenes, methods, tols, t_end, dt_out, repeats, rhs_calls, out, progress)
+
+
+def _run_peers(library, scenes, methods, tols, t_end, dt_out, repeats, rhs_calls, folder, progress):
     lib = problem_lib.load_library(library)
     runs, costs, ends = [], [], set()
     for scene in scenes:

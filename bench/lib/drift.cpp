@@ -3,19 +3,30 @@
 #include <algorithm>
 #include <cmath>
 
+#include "problems/energy.hpp"
+
 namespace rb {
 
 DriftMeter::DriftMeter(const Problem& problem)
-    : model_(&problem.model()), start_energy_(problem.model().derived(problem.y0()).energy) {}
+    : model_(&problem.model()),
+      start_energy_(problem.model().derived(problem.y0()).energy),
+      start_energy_on_group_(energy_on_group(problem.model(), problem.y0())) {}
 
 Drift DriftMeter::at(const FlatState& y) const {
   const Derived d = model_->derived(y);
-  return {std::abs(d.energy - start_energy_), d.rotation_defect};
+  const double flat = std::abs(d.energy - start_energy_);
+  // H does not read R for the homogeneous ball: the two are one number there
+  // (and no SVD is spent on it); the start's R is a rotation, so both start
+  // from the same H(y0)
+  const double on_group = model_->anisotropic() ? std::abs(energy_on_group(*model_, y) - start_energy_on_group_) : flat;
+  return {flat, d.rotation_defect, on_group};
 }
 
 InvariantMeter::InvariantMeter(const Problem& problem) : problem_(&problem) {
-  for (const auto& family : problem.invariants())
+  for (const auto& family : problem.invariants()) {
     for (const std::string& q : family->quantities()) names_.push_back(family->name() + "." + q);
+    for (const IntegralKind k : family->kinds()) kinds_.push_back(k);
+  }
   std::vector<double> magnitudes;
   start_ = values(problem.y0(), &magnitudes);
   for (const double m : magnitudes) scale_.push_back(m > 0.0 ? m : 1.0);
@@ -52,6 +63,7 @@ Drift largest_drift(const Problem& problem, const Trajectory& output) {
     const Drift d = meter.at(y);
     largest.energy = std::max(largest.energy, d.energy);
     largest.rotation_defect = std::max(largest.rotation_defect, d.rotation_defect);
+    largest.energy_on_group = std::max(largest.energy_on_group, d.energy_on_group);
   }
   return largest;
 }

@@ -7,12 +7,18 @@
 #include <vector>
 
 #include "integrators/integrator.hpp"
+#include "problems/invariants.hpp"
 
 namespace rb {
 
 struct Drift {
-  double energy = 0.0;           // |H(y) - H(y0)|, in the scene's energy units
+  double energy = 0.0;           // |H(y) - H(y0)|, in the scene's energy units (H read on the flat view)
   double rotation_defect = 0.0;  // ||R^T R - I||_F
+  // the same at the nearest rotation, |H(polar(R), v, alpha) - H(y0)|
+  // (problems/energy.hpp): what the flat H hides where R drifts off SO(3)
+  // for a ball whose orientation matters; equal to energy for the
+  // homogeneous ball
+  double energy_on_group = 0.0;
 };
 
 // The drift of states of one problem against its start.
@@ -23,7 +29,7 @@ class DriftMeter {
 
  private:
   const RollingBall* model_;
-  double start_energy_;
+  double start_energy_, start_energy_on_group_;
 };
 
 // The errors of the first integrals a problem's scene declares
@@ -35,12 +41,15 @@ class InvariantMeter {
   explicit InvariantMeter(const Problem& problem);
   // "routh-paraboloid.J1", ..., in the order of errors()
   const std::vector<std::string>& names() const { return names_; }
+  // each one's kind (problems/invariants.hpp), in the same order
+  const std::vector<IntegralKind>& kinds() const { return kinds_; }
   std::vector<double> errors(const FlatState& y) const;
 
  private:
   std::vector<double> values(const FlatState& y, std::vector<double>* magnitudes) const;
   const Problem* problem_;
   std::vector<std::string> names_;
+  std::vector<IntegralKind> kinds_;
   std::vector<double> start_, scale_;
 };
 

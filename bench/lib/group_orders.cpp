@@ -9,20 +9,22 @@
 namespace rb {
 
 OrderFit self_convergence_fit(const std::vector<double>& h, const std::vector<double>& distance,
-                              const OrderFit& reference, double ceiling, double span) {
-  // no reference, so no floor: rounding alone ends the self-convergence
-  const OrderFit own = fit_order(h, distance, 0.0, ceiling, kOrderWindowPoints, span);
+                              const OrderFit& reference, double ceiling, double rounding, double rounding_step) {
+  // no reference, so no floor: rounding alone ends the self-convergence,
+  // at kSelfPlateauMultiple x its level
+  const double floor = rounding * kSelfPlateauMultiple / kFloorMultiple;
+  const OrderFit own = fit_order(h, distance, floor, ceiling, kOrderWindowPoints, rounding_step);
   if (!std::isfinite(reference.slope)) return own;
   std::vector<double> in_h, in_d;
   for (std::size_t k = 0; k < h.size() && k < distance.size(); ++k)
     if (h[k] >= reference.h_min / kWindowSlack && h[k] <= reference.h_max * kWindowSlack)
       in_h.push_back(h[k]), in_d.push_back(distance[k]);
-  const OrderFit matched = fit_order(in_h, in_d, 0.0, ceiling, kOrderWindowPoints, span);
+  const OrderFit matched = fit_order(in_h, in_d, floor, ceiling, kOrderWindowPoints, rounding_step);
   return std::isfinite(matched.slope) ? matched : own;
 }
 
 OrderScale order_scale(const SweepScene& scene) {
-  return {scene.reference.error, scene.omega_scale, scene.reference.component_error};
+  return {scene.reference.error, scene.omega_scale, scene.reference.component_error, kReferenceRoundingStep};
 }
 
 double order_ceiling(std::size_t component, double omega_scale) {
@@ -34,14 +36,13 @@ std::array<ComponentOrder, kErrorComponentCount> group_orders(const std::vector<
   std::array<ComponentOrder, kErrorComponentCount> out;
   if (group.empty()) return out;
   const FitRun& first = *group.front();
-  // the time span sets each run's rounding level (kRoundingPerStep per step)
-  double span = 0.0;
-  for (const FitRun* r : group)
-    if (r->ok) span = std::max(span, r->stop_time);
   const std::vector<SelfDifference> self = self_differences(group);
   for (std::size_t i = 0; i < kErrorComponentCount; ++i) {
     const std::string c = kErrorComponents[i].name;
-    const double floor = std::isfinite(scale.component_floor[i]) ? scale.component_floor[i] : scale.floor;
+    // a component whose reference and check agree to the bit (omega on the
+    // plane, constant) measures no rounding: the reference's largest own error stands for it
+    const double own = scale.component_floor[i];
+    const double floor = std::isfinite(own) && own > 0.0 ? own : scale.floor;
     std::vector<double> h, e;
     for (const FitRun* r : group) {
       h.push_back(r->h);
@@ -58,8 +59,8 @@ std::array<ComponentOrder, kErrorComponentCount> group_orders(const std::vector<
     // after projection converges one order faster
     o.declared = c == "rotation" ? first.declared_rotation_order : first.declared_order;
     const double ceiling = order_ceiling(i, scale.omega_scale);
-    o.reference = fit_order(h, e, floor, ceiling, kOrderWindowPoints, span);
-    o.self = self_convergence_fit(self_h, self_d, o.reference, ceiling, span);
+    o.reference = fit_order(h, e, floor, ceiling, kOrderWindowPoints, scale.rounding_step);
+    o.self = self_convergence_fit(self_h, self_d, o.reference, ceiling, floor, scale.rounding_step);
     o.judgement = judge_order(o.reference, o.self, o.declared);
   }
   return out;

@@ -25,14 +25,25 @@ inline constexpr std::size_t kOrderWindowPoints = 8;
 // reference's largest |omega| (order_ceiling).
 inline constexpr double kOrderCeiling = 0.1;
 
+// The step of the reference's finer solution (its cross-check takes half
+// the primary's step, ReferenceSettings::h = 2^-10): the runs whose
+// disagreement measured the floor, rounding included, took t_end /
+// kReferenceRoundingStep steps (tests/bench/test_order_ladder_rules.cpp
+// holds the two together).
+inline constexpr double kReferenceRoundingStep = 1.0 / 2048.0;
+
 // What a scene gives the fits of its runs: the reference's floor (its own
 // error, the largest over the components), omega_scale (the reference's
-// largest |omega|) and the floor of each component (its own error in that
-// component; NaN: floor stands for it, as in a report older than these).
+// largest |omega|), the floor of each component (its own error in that
+// component; NaN: floor stands for it, as in a report older than these;
+// 0, a component the reference and its check agree on to the bit: floor
+// stands for it too) and the step at which the floors measured the
+// rounding (plateau_level, order_fit.hpp).
 struct OrderScale {
   double floor = 0.0;
   double omega_scale = 1.0;
   std::array<double, kErrorComponentCount> component_floor{kNaN, kNaN, kNaN, kNaN};
+  double rounding_step = kReferenceRoundingStep;
 };
 
 // The self-convergence fit (self_convergence.hpp) of distances D(h)
@@ -41,10 +52,14 @@ struct OrderScale {
 // slopes read the same stretch of the ladder and a pre-asymptotic step
 // outside the window moves neither; where that holds fewer than two
 // distances, or the reference fit has no slope, its own window from the
-// smallest step up.
+// smallest step up. A distance within kSelfPlateauMultiple x the rounding
+// level (plateau_level(rounding, rounding_step, h): the reference's floor,
+// as the reference fit's) is left out: no reference, but rounding.
 inline constexpr double kWindowSlack = 1.1;
+inline constexpr double kSelfPlateauMultiple = 10.0;
 OrderFit self_convergence_fit(const std::vector<double>& h, const std::vector<double>& distance,
-                              const OrderFit& reference, double ceiling, double span);
+                              const OrderFit& reference, double ceiling, double rounding = 0.0,
+                              double rounding_step = 0.0);
 
 // A sweep's scene's: its reference's floors and omega_scale.
 OrderScale order_scale(const SweepScene& scene);

@@ -3,9 +3,11 @@
 // fixed-step method one run of HorizonSpec::steps steps of h, its energy
 // error |H - H0| and rotation defect ||R^T R - I||_F recorded as their
 // envelope over log-spaced windows (the largest in each window), and for
-// each the growth exponent p of err ~ C t^p, fitted by least squares on
-// log-log over the run's later part; the fit says whether its early and
-// late halves agree (asymptotic), and series identical to another run's
+// each its growth class (bench/lib/growth_class.hpp: bounded, linear, ...,
+// or undecided) from the exponent p of err ~ C t^p over the run's last
+// three decades, each decade confirming it; where a class is undecided the
+// study runs the next decade (10 times the steps) while its budget allows
+// (HorizonSpec::steps_max, cpu_max_s). Series identical to another run's
 // (the same tableau on (v, alpha) of a homogeneous ball) are marked.
 // Where the stability study asks "does it stay bounded", this asks "how fast
 // does it grow": t^0 bounded, t^1 a steady drift, t^2 a drift that feeds on
@@ -15,42 +17,33 @@
 #include <string>
 #include <vector>
 
+#include "bench/lib/growth_class.hpp"
 #include "bench/lib/sweep.hpp"
+#include "problems/invariants.hpp"
 
 namespace rb {
-
-// err ~ C t^p over [t_from, t_to].
-struct GrowthFit {
-  double p = kNaN;     // slope of log10 err on log10 t; NaN without a fit
-  double ci95 = kNaN;  // half-width of its 95 % interval (least squares, points taken as independent)
-  // the slopes over the first and the second half of the window (in log t):
-  // where they differ by more than ci95 the growth law is still changing,
-  // a wider and more honest interval than ci95
-  double p_early = kNaN, p_late = kNaN;
-  double log10_c = kNaN;  // intercept: log10 C
-  double t_from = 0.0, t_to = 0.0;
-  int points = 0;         // samples in the window with a finite value > 0
-  double largest = kNaN;  // the largest value in the window
-  double rounding_level = 0.0;
-  bool at_rounding = false;  // largest <= rounding_level: p describes rounding, not the method
-  bool asymptotic = false;   // |p_late - p_early| <= HorizonSpec::asymptotic_spread (false without a fit)
-  std::string why_none;      // why p is NaN (empty when there is a fit)
-};
-
-// Growth samples need this many points in the window for a fit.
-inline constexpr int kMinGrowthPoints = 4;
-
-// The fit of the pairs (t, err) with t in [t_from, t_to] and err finite and
-// > 0; t and err are paired.
-GrowthFit fit_growth(const std::vector<double>& t, const std::vector<double>& err, double t_from, double t_to,
-                     double rounding_level);
 
 // The error of one first integral of the scene (InvariantMeter: relative to
 // its magnitude at the start), recorded and fitted like the energy error.
 struct InvariantSeries {
-  std::string name;  // "routh-paraboloid.J1"
+  std::string name;                             // "routh-paraboloid.J1"
+  IntegralKind kind = IntegralKind::dynamical;  // kinematic: kept by any method, no evidence of structure
   std::vector<double> error;
   GrowthFit fit;
+};
+
+// A shorter run of the study's scene and method, made before the record's
+// own: its class was undecided and the budget allowed the next decade.
+struct EarlierRun {
+  long steps = 0;
+  double t_end = 0.0;
+  Status status = Status::ok;
+  double cpu_s = 0.0, wall_s = 0.0;
+  // the largest value of each series over the whole run (the price of
+  // staying under a target over the study's first horizon reads them)
+  double energy_error = kNaN, energy_error_on_group = kNaN, rotation_defect = kNaN;
+  GrowthClass energy_class = GrowthClass::none, energy_on_group_class = GrowthClass::none,
+              defect_class = GrowthClass::none;
 };
 
 struct HorizonRecord {
@@ -61,6 +54,13 @@ struct HorizonRecord {
   long coarsening = 1;  // 1: the study's run; k: a price run of steps / k steps of k h
   double h = 0.0;
   long steps = 0;  // planned; the run ends at t_end = steps h
+  // the steps the study asked for (HorizonSpec::steps, or steps / k for a
+  // price run): steps is 10^j times it where the class was undecided
+  long study_steps = 0;
+  std::vector<EarlierRun> earlier;  // the shorter runs before this one, shortest first
+  // a series the study classes is undecided and the next decade was past
+  // the budget: why (empty otherwise)
+  std::string budget_reason;
   double t_end = 0.0;
   Status status = Status::ok;
   std::string message;
@@ -70,10 +70,16 @@ struct HorizonRecord {
   double cpu_s = 0.0;         // the same, in this run's thread's CPU time (its price: runs share threads)
   double energy_scale = 0.0;  // m g0 r + the starting kinetic energy (J)
   // at the sample times: the envelope, the largest of the states measured
-  // (the samples and a uniform grid of about dense_outputs states between)
-  // in the window (the previous sample time, t]; NaN where none is finite
+  // (the samples, a uniform grid of about dense_outputs states between and
+  // window_outputs states evenly spaced in each window) in the window (the
+  // previous sample time, t]; NaN where none is finite
   std::vector<double> t, energy_error, rotation_defect;
   GrowthFit energy_fit, defect_fit;
+  // the energy error at the nearest rotation, |H(polar(R), v, alpha) - H0|
+  // (bench/lib/drift.hpp), at the same samples, and its fit: what the
+  // findings read (the flat H hides R's drift off SO(3))
+  std::vector<double> energy_error_on_group;
+  GrowthFit energy_on_group_fit;
   // the scene's declared first integrals, in InvariantMeter's order
   std::vector<InvariantSeries> invariants;
 };
@@ -110,13 +116,29 @@ double rounding_level(long steps, double scale);
 // status, its samples up to the stop and no fit).
 HorizonRecord horizon_run(const Problem& problem, const Integrator& method, const HorizonSpec& spec);
 
+// The series whose class decides whether the study runs the next decade:
+// the energy error, flat and at the nearest rotation, and the rotation defect.
+bool any_undecided(const HorizonRecord& r);
+
+// The study's run of one scene and method, decade by decade: horizon_run
+// at spec.steps, then, while any_undecided and the next decade's run (10
+// times the steps) stays within spec.steps_max and its CPU time, predicted
+// as 10 times this run's, within spec.cpu_max_s, again at 10 times the
+// steps. The record is the last run, with the earlier ones in `earlier` and
+// the budget's reason where it stopped an undecided class.
+HorizonRecord horizon_decades(const Problem& problem, const Integrator& method, const HorizonSpec& spec);
+
 // Checks the spec: every integrator known and fixed-step, steps, h and the
 // sampling in range; throws InputError naming the option.
 void check_horizon(const HorizonSpec& spec);
 
 // --horizon-steps TEXT: a whole number from 1000 to 1e8 ("100000", "1e6");
-// throws InputError (key "horizon-steps") otherwise.
-long parse_horizon_steps(const std::string& text);
+// throws InputError (key "horizon-steps", or the key given) otherwise.
+long parse_horizon_steps(const std::string& text, const std::string& key = "horizon-steps");
+
+// --horizon-cpu-max TEXT: seconds, a finite number > 0; throws InputError
+// (key "horizon-cpu-max") otherwise.
+double parse_horizon_cpu_max(const std::string& text);
 
 // The coarsenings k of HorizonSpec::coarsenings that give price runs: those
 // above 1 that divide steps, without repeats, in the given order.

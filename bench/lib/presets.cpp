@@ -2,9 +2,13 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
+#include <string_view>
 
 #include "problems/input_error.hpp"
+#include "problems/safe_name.hpp"
+#include "problems/whole_number.hpp"
 
 namespace rb {
 
@@ -138,12 +142,16 @@ std::vector<double> parse_number_list(const std::string& text, const std::string
   std::vector<double> values;
   const auto range = text.find("..");
   if (range != std::string::npos) {
-    // 2^p..2^q with integers p >= q (2^0..2^-10): falling, as h is swept
-    int p = 0, q = 0, used = 0;
-    if (std::sscanf(text.c_str(), "2^%d..2^%d%n", &p, &q, &used) != 2 || used != static_cast<int>(text.size()) ||
-        p < q || p > 60 || q < -60)
-      throw InputError("expected a range like 2^-3..2^-8, got '" + text + "'", key);
-    return powers_of_two(-p, -q);
+    // 2^p..2^q with whole numbers 60 >= p >= q >= -60 (2^0..2^-10): falling,
+    // as h is swept; each exponent read strictly (no '+', no spaces)
+    const auto exponent = [&](std::size_t from, std::size_t to) -> std::optional<long long> {
+      if (text.compare(from, 2, "2^") != 0) return std::nullopt;
+      return whole_number_in(std::string_view(text).substr(from + 2, to - from - 2), -60, 60);
+    };
+    const auto p = exponent(0, range), q = exponent(range + 2, text.size());
+    if (!p || !q || *p < *q)
+      throw InputError("expected a range like 2^-3..2^-8, got '" + escaped_excerpt(text) + "'", key);
+    return powers_of_two(static_cast<int>(-*p), static_cast<int>(-*q));
   }
   std::stringstream in(text);
   std::string item;
@@ -156,6 +164,24 @@ std::vector<double> parse_number_list(const std::string& text, const std::string
   }
   if (values.empty()) throw InputError("the list is empty", key);
   return values;
+}
+
+std::vector<double> parse_stability_horizons(const std::string& text, const std::string& key) {
+  const std::vector<double> horizons = parse_number_list(text, key);
+  for (std::size_t i = 0; i < horizons.size(); ++i) {
+    if (horizons[i] > kMaxStabilityHorizon) {
+      std::ostringstream out;
+      out << "a horizon of at most " << kMaxStabilityHorizon << " s, got " << horizons[i];
+      throw InputError(out.str(), key);
+    }
+    if (i > 0 && !(horizons[i] > horizons[i - 1])) {
+      std::ostringstream out;
+      out << "the horizons must increase (each run is read at them on its way), got " << horizons[i] << " after "
+          << horizons[i - 1];
+      throw InputError(out.str(), key);
+    }
+  }
+  return horizons;
 }
 
 }  // namespace rb

@@ -15,6 +15,7 @@
 #include "bench/lib/output_file.hpp"
 #include "integrators/registry.hpp"
 #include "problems/input_error.hpp"
+#include "problems/safe_path.hpp"
 #include "problems/so3.hpp"
 
 namespace rb {
@@ -154,7 +155,25 @@ Reference from_json(const nlohmann::json& j) {
   return r;
 }
 
+// The cache folder made (as mkdir -p) by the path rule
+// (problems/safe_path.hpp): false, with a note, when a link on the way is
+// another user's; a folder that cannot be made or written is only not
+// cached into, as before.
+bool usable_cache_folder(const std::string& cache_dir) {
+  const OpenedFolder folder = open_folder(cache_dir, MissingFolders::make);
+  if (folder || folder.refused.empty()) return true;
+  std::fprintf(stderr, "rollbench: note: the cache folder '%s' is not used (%s)\n", cache_dir.c_str(),
+               folder.refused.c_str());
+  return false;
+}
+
 }  // namespace
+
+void check_cache_folder(const std::string& cache_dir) {
+  if (cache_dir.empty()) return;
+  if (const OpenedFolder folder = open_folder(cache_dir, MissingFolders::make); !folder && !folder.refused.empty())
+    throw InputError("cannot use the cache folder '" + cache_dir + "' (" + folder.refused + ")", "cache");
+}
 
 std::string cache_entry_checksum(const nlohmann::json& entry) {
   return sha256_hex(entry["reference"].dump() + entry["made_from"].dump());
@@ -194,7 +213,7 @@ Reference make_reference(const Problem& problem, const std::string& scene_conten
   namespace fs = std::filesystem;
   fs::path cache_file;
   nlohmann::json key;
-  if (!settings.cache_dir.empty()) {
+  if (!settings.cache_dir.empty() && usable_cache_folder(settings.cache_dir)) {
     key = made_from(scene_content, times, settings);
     // the file's name is a hash of what it is made from: never the scene's name
     cache_file = fs::path(settings.cache_dir) / ("reference-" + sha256_hex(key.dump()).substr(0, 32) + ".json");
@@ -202,13 +221,16 @@ Reference make_reference(const Problem& problem, const std::string& scene_conten
     if (fs::exists(cache_file, ec)) {
       std::string why;
       try {
-        const nlohmann::json entry = read_json_file(cache_file.string(), "cached reference", "cache");
+        // its size checked before it is read: a 1 GiB entry costs nothing
+        const nlohmann::json entry = read_json_file(cache_file.string(), reference_cache_input(times.size()), "cache");
         why = entry_problem(entry, key, times);
         if (why.empty()) {
           Reference cached = from_json(entry["reference"]);
           cached.from_cache = true;
           return cached;
         }
+      } catch (const InputError& e) {
+        why = e.message();
       } catch (const std::exception& e) {
         why = e.what();
       }
@@ -267,8 +289,6 @@ Reference make_reference(const Problem& problem, const std::string& scene_conten
   }
 
   if (!cache_file.empty()) {
-    std::error_code ec;
-    fs::create_directories(cache_file.parent_path(), ec);
     // whole or not at all, also when shards write the same entry at once;
     // a cache that cannot be written is only slower next time
     try {

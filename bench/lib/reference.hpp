@@ -63,6 +63,14 @@ struct ReferenceSettings {
 Reference make_reference(const Problem& problem, const std::string& scene_content, const std::vector<double>& times,
                          const ReferenceSettings& settings);
 
+// Makes the cache folder (as mkdir -p) by the path rule of
+// problems/safe_path.hpp, before any work: InputError under "cache"
+// ("cannot use the cache folder 'D' ('L' is a symbolic link owned by uid N
+// in a folder owned by uid M; not followed)") when a link on the way is
+// another user's. Nothing for "" (no cache); a folder that cannot be made
+// or written is only not cached into (make_reference).
+void check_cache_folder(const std::string& cache_dir);
+
 // The reference point of a state (derived quantities of the model).
 ReferencePoint reference_point_of(const Problem& problem, const FlatState& y);
 

@@ -52,7 +52,7 @@ Report make_report(const SweepSpec& spec, const std::vector<SweepScene>& scenes,
 }
 
 json read_report(const std::string& path) {
-  const json j = read_json_file(path, "report", "report");
+  const json j = read_json_file(path, kReportInput, "report");
   if (!j.is_object() || !j.contains("schema") || j["schema"] != kReportSchema)
     throw InputError("'" + path + "' is not a " + std::string(kReportSchema) + " report", "schema");
   return j;

@@ -134,11 +134,17 @@ nlohmann::json error_components_json();
 // Joins shard reports: runs, references, stability and horizon records in sweep
 // order; orders and tolerance fits refitted from the runs as a whole sweep
 // fits them. Throws InputError for reports of different sweeps, unless
-// every shard 0..n-1 is there once (the message names the missing ones).
+// every shard 0..n-1 is there once (the message names the missing ones)
+// and every index of the runs, of the stability and of the horizon records
+// is there once (0 .. total - 1 across the shards; one out of range or held
+// twice is named with its files: merge_named_reports' files[k] names
+// shards[k], "shard report k" where files is short); a scene whose
+// references in two shards disagree (t_end, inertia, method) is refused.
 // The JSON form reads each shard once (report_from_json, naming files[k],
 // "shard report k" where files is short, and the key of what a merge
 // cannot read).
 Report merge_reports(const std::vector<Report>& shards);
+Report merge_named_reports(const std::vector<Report>& shards, const std::vector<std::string>& files);
 nlohmann::json merge_reports(const std::vector<nlohmann::json>& shards, const std::vector<std::string>& files = {});
 
 // Reads a report and checks its schema string; throws InputError naming the

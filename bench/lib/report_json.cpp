@@ -14,12 +14,14 @@ using report_parts::number;
 namespace {
 
 // A fit as a report holds it: the slope with its 95 % interval and window,
-// the halving and rung slopes, whether the halvings agree (asymptotic), null where no
-// slope was fitted.
+// the halving and rung slopes, whether the halvings agree (asymptotic), the
+// trend test's slopes and trend (null below 3 slopes), null where no slope
+// was fitted.
 json order_fit_json(const OrderFit& fit) {
-  json j = {{"points", std::max(0, fit.points)},    {"at_plateau", fit.at_floor},
-            {"halving_slopes", fit.halving_slopes}, {"rung_slopes", fit.rung_slopes},
-            {"asymptotic", fit.asymptotic},         {"all_at_plateau", fit.all_at_plateau}};
+  json j = {
+      {"points", std::max(0, fit.points)}, {"at_plateau", fit.at_floor},   {"halving_slopes", fit.halving_slopes},
+      {"rung_slopes", fit.rung_slopes},    {"asymptotic", fit.asymptotic}, {"all_at_plateau", fit.all_at_plateau},
+      {"trend_slopes", fit.trend_slopes},  {"trend", number(fit.trend)},   {"trend_ci95", number(fit.trend_ci95)}};
   if (!std::isfinite(fit.slope)) {
     j["slope"] = nullptr;
     j["ci95"] = nullptr;
@@ -60,10 +62,7 @@ json order_json(const ReportOrder& order) {
           {"fit", fits[kErrorComponents[kHeadlineComponent].name]},
           {"fits", fits},
           {"self_convergence", self},
-          {"plateau",
-           {{"floor_multiple", kFloorMultiple},
-            {"rounding_multiple", kRoundingMultiple},
-            {"rounding_per_step", kRoundingPerStep}}},
+          {"plateau", {{"floor_multiple", kFloorMultiple}, {"rounding_step", kReferenceRoundingStep}}},
           {"verdict", verdicts},
           {"inconclusive_reason", reasons},
           {"pass", lower                                ? json(false)

@@ -46,7 +46,7 @@ nlohmann::json build_json();
 std::string utc_now();
 nlohmann::json options_json(const SweepSpec& spec);  // without "shard"
 nlohmann::json timed_call_json(const SweepSpec& spec);
-// What fails a stability rung, in the options and in each stability record.
+// The stability study's drift and blow-up bounds, in the options and in each stability record.
 nlohmann::json bounds_json(const StabilityBounds& bounds);
 
 // run_json.cpp: a scene's reference entry, and the stability study.

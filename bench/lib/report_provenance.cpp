@@ -32,11 +32,11 @@ std::string first_line_of(const std::string& path, const std::string& prefix) {
 
 }  // namespace
 
-// What fails a stability rung, as the report states it.
+// The stability study's drift and blow-up bounds, as the report states them.
 json bounds_json(const StabilityBounds& b) {
-  return {{"energy", b.energy_fraction},
-          {"rotation_defect", b.rotation_defect},
-          {"growth_exponent", b.growth_exponent},
+  return {{"energy", b.energy_fraction},        {"rotation_defect", b.rotation_defect},
+          {"blow_up_energy", b.blow_up_energy}, {"blow_up_defect", b.blow_up_defect},
+          {"blow_up_steps", b.blow_up_steps},   {"growth_exponent", b.growth_exponent},
           {"growth_floor", b.growth_floor}};
 }
 
@@ -102,7 +102,9 @@ json options_json(const SweepSpec& s) {
             {"drift_t_end", st.drift_t_end},
             {"search_h_max", st.search_h_max},
             {"search_h_min", st.search_h_min},
-            {"search_t_end", st.search_t_end},
+            {"horizons", st.horizons},
+            // the key of before (one horizon): the last, which every rung runs to
+            {"search_t_end", number(st.horizons.empty() ? kNaN : st.horizons.back())},
             {"search_outputs", st.search_outputs},
             {"bounds", bounds_json(st.bounds)}}},
           {"horizon", horizon_options_json(s.horizon)}};

@@ -119,6 +119,12 @@ OrderFit order_fit_of(const EntryFields& f, const json& node, const std::string&
   fit.rung_slopes = f.numbers(node, "rung_slopes", path);
   fit.asymptotic = f.flag(node, "asymptotic", path);
   fit.all_at_plateau = f.flag(node, "all_at_plateau", path);
+  // the trend test's; absent from reports older than it
+  if (node.contains("trend_slopes")) {
+    fit.trend_slopes = f.numbers(node, "trend_slopes", path);
+    fit.trend = f.number_or_null(node, "trend", path);
+    fit.trend_ci95 = f.number_or_null(node, "trend_ci95", path);
+  }
   fit.slope = f.number_or_null(node, "slope", path);
   fit.slope_ci95 = f.number_or_null(node, "ci95", path);
   if (!std::isfinite(fit.slope)) return fit;

@@ -33,6 +33,17 @@ json reversibility_json(const ReversibilityDefect& d) {
           {"worst", number(d.worst())}};
 }
 
+// What an implicit method pays besides F, that rhs_equivalents counts in
+// (integrators/integrator.hpp); null for a method without a Jacobian.
+json implicit_cost_json(const Cost& c, bool needs_jacobian) {
+  if (!needs_jacobian) return nullptr;
+  return {{"jacobian_columns", c.jacobian_columns},
+          {"model_passes", c.model_passes},
+          {"lu_decompositions", c.lu_decompositions},
+          {"linear_algebra_flops", c.linear_algebra_flops},
+          {"flops_per_rhs", kFlopsPerRhs}};
+}
+
 json growth_json(const GrowthShape& g) {
   return {{"p_early", number(g.p_early)}, {"p_late", number(g.p_late)}, {"exponential", g.exponential}};
 }
@@ -52,6 +63,94 @@ json inertia_json(const SweepScene& s) {
   if (!s.scene.ball.inertia) return nullptr;
   const Vec3& I = *s.scene.ball.inertia;
   return {I.x(), I.y(), I.z()};
+}
+
+// One rung's verdict at one horizon.
+json horizon_verdict_json(const HorizonVerdict& v) {
+  return {
+      {"horizon", v.horizon},
+      {"crossed_at", number(v.crossed_at)},
+      {"failed_at", number(v.failed_at)},
+      {"energy_error", number(v.energy_error_flat)},
+      {"energy_error_on_group", number(v.energy_error)},
+      {"rotation_defect", number(v.rotation_defect)},
+      {"growth", {{"energy_error", growth_json(v.energy_growth)}, {"rotation_defect", growth_json(v.defect_growth)}}},
+      {"blow_up", v.blow_up == BlowUp::none ? json(nullptr) : json(blow_up_name(v.blow_up))},
+      {"within", v.within()}};
+}
+
+// A rung's failure at the last horizon it was judged at (null: stable):
+// how it blew up, else the first drift bound it crossed.
+json rung_failure(const StableStepTry& t) {
+  if (t.stable || t.at.empty()) return nullptr;
+  if (t.last().blow_up != BlowUp::none) return blow_up_name(t.last().blow_up);
+  const double e = t.energy_crossed_at, q = t.defect_crossed_at;
+  if (!std::isnan(e) && !(q < e)) return kEnergyQuantity;
+  if (!std::isnan(q)) return kDefectQuantity;
+  return nullptr;
+}
+
+json stable_step_json(const StableStepRecord& r) {
+  json tried = json::array();
+  for (const StableStepTry& t : r.tried) {
+    json at = json::array();
+    for (const HorizonVerdict& v : t.at) at.push_back(horizon_verdict_json(v));
+    const HorizonVerdict last = t.at.empty() ? HorizonVerdict{} : t.last();
+    tried.push_back(
+        {{"h", t.h},
+         {"status", std::string(status_name(t.status))},
+         {"message", t.message},
+         {"stop_time", t.stop_time},
+         {"cut_short", t.cut_short},
+         {"steps", t.steps},
+         {"energy_error", number(last.energy_error_flat)},
+         {"energy_error_on_group", number(last.energy_error)},
+         {"rotation_defect", number(last.rotation_defect)},
+         {"growth",
+          {{"energy_error", growth_json(last.energy_growth)}, {"rotation_defect", growth_json(last.defect_growth)}}},
+         {"crossed_at",
+          {{kEnergyQuantity, number(t.energy_crossed_at)},
+           {kDefectQuantity, number(t.defect_crossed_at)},
+           {"energy-blow-up", number(t.energy_blown_at)},
+           {"defect-blow-up", number(t.defect_blown_at)}}},
+         {"horizons", at},
+         {"failure", rung_failure(t)},
+         {"stable", t.stable}});
+  }
+  json blow_up = json::array(), drift_limited = json::array();
+  for (const BlowUpStep& b : r.blow_up)
+    blow_up.push_back({{"horizon", b.horizon},
+                       {"h", number(b.h)},
+                       {"cause", std::isnan(b.h) ? json(nullptr) : json(blow_up_name(b.cause))},
+                       {"status", std::isnan(b.h) ? json(nullptr) : json(std::string(status_name(b.status)))},
+                       {"smallest_tried", b.smallest_tried}});
+  for (const DriftLimit& d : r.drift_limited)
+    drift_limited.push_back(
+        {{"horizon", d.horizon},
+         {"h", number(d.h)},
+         {"at_limit", d.at_limit},
+         {"next_h", number(d.next_h)},
+         {"limited_by", d.limited_by.empty() ? json(nullptr) : json(d.limited_by)},
+         {"blow_up", d.blow_up == BlowUp::none ? json(nullptr) : json(blow_up_name(d.blow_up))},
+         {"status", std::isnan(d.next_h) ? json(nullptr) : json(std::string(status_name(d.next_status)))},
+         {"value", number(d.value)},
+         {"bound", number(d.bound)}});
+  return {{"index", r.index},
+          {"scene", r.scene},
+          {"integrator", r.method.name},
+          {"family", r.method.family},
+          {"h", number(r.h)},
+          {"horizon", r.horizon},
+          {"horizons", r.horizons},
+          {"at_limit", r.at_limit},
+          {"energy_error", number(r.energy_error)},
+          {"energy_error_on_group", number(r.energy_error_on_group)},
+          {"rotation_defect", number(r.rotation_defect)},
+          {"energy_scale", r.energy_scale},
+          {"thresholds", report_parts::bounds_json(r.bounds)},
+          {"blow_up", {{"same_at_every_horizon", !r.blow_up_moves}, {"at", blow_up}}},
+          {"drift_limited", drift_limited},
+          {"tried", tried}};
 }
 
 }  // namespace
@@ -95,6 +194,8 @@ json run_json(const RunRecord& r, const std::string& reference_kind) {
       {"exp_evals", r.cost.exp_evals},
       {"dexpinv_evals", r.cost.dexpinv_evals},
       {"validity_checks", r.cost.validity_checks},
+      {"rhs_equivalents", number(r.cost.rhs_equivalents())},
+      {"implicit_cost", implicit_cost_json(r.cost, m.needs_jacobian)},
       {"newton",
        m.newton_tol > 0.0
            ? json{{"tol", m.newton_tol}, {"iterations", r.cost.newton_iterations}, {"failures", r.cost.newton_failures}}
@@ -112,7 +213,10 @@ json run_json(const RunRecord& r, const std::string& reference_kind) {
       {"error_grid", r.has_error_grid ? errors_json(r.error_grid, reference_kind) : json(nullptr)},
       {"scd", number(r.error.scd)},
       {"reversibility", r.reversibility ? reversibility_json(*r.reversibility) : json(nullptr)},
-      {"drift", {{"energy", number(r.energy_drift)}, {"rotation_defect", number(r.rotation_drift)}}},
+      {"drift",
+       {{"energy", number(r.energy_drift)},
+        {"energy_on_group", number(r.energy_drift_on_group)},
+        {"rotation_defect", number(r.rotation_drift)}}},
       {"final",
        {{"t", r.stop_time},
         {"contact", {r.final_state[kOffsetAlpha], r.final_state[kOffsetAlpha + 1]}},
@@ -152,37 +256,13 @@ json stability_json(const StabilityResults& s) {
                      {"stop_time", d.stop_time},
                      {"t", d.t},
                      {"energy_error", d.energy_error},
+                     {"energy_error_on_group", d.energy_error_on_group},
                      {"rotation_defect", d.rotation_defect},
                      {"steps", d.cost.steps},
                      {"rhs_evals", d.cost.rhs_evals},
+                     {"rhs_equivalents", number(d.cost.rhs_equivalents())},
                      {"wall_s", d.wall_s}});
-  for (const StableStepRecord& r : s.largest_stable_h) {
-    json tried = json::array();
-    for (const StableStepTry& t : r.tried)
-      tried.push_back(
-          {{"h", t.h},
-           {"status", std::string(status_name(t.status))},
-           {"message", t.message},
-           {"stop_time", t.stop_time},
-           {"energy_error", number(t.energy_error)},
-           {"rotation_defect", number(t.rotation_defect)},
-           {"growth",
-            {{"energy_error", growth_json(t.energy_growth)}, {"rotation_defect", growth_json(t.defect_growth)}}},
-           {"failure", t.stable ? json(nullptr) : json(failure_name(t.failure))},
-           {"stable", t.stable}});
-    stable.push_back({{"index", r.index},
-                      {"scene", r.scene},
-                      {"integrator", r.method.name},
-                      {"family", r.method.family},
-                      {"h", number(r.h)},
-                      {"horizon", r.horizon},
-                      {"at_limit", r.at_limit},
-                      {"energy_error", number(r.energy_error)},
-                      {"rotation_defect", number(r.rotation_defect)},
-                      {"energy_scale", r.energy_scale},
-                      {"thresholds", bounds_json(r.bounds)},
-                      {"tried", tried}});
-  }
+  for (const StableStepRecord& r : s.largest_stable_h) stable.push_back(stable_step_json(r));
   return {{"drift", drift}, {"largest_stable_h", stable}};
 }
 

@@ -8,6 +8,7 @@
 #include "bench/lib/sweep.hpp"
 #include "bench/lib/trajectory_csv.hpp"
 #include "problems/input_error.hpp"
+#include "problems/safe_name.hpp"
 #include "problems/utf8.hpp"
 
 namespace rb {
@@ -15,6 +16,9 @@ namespace rb {
 namespace {
 
 using json = nlohmann::json;
+
+// A row of 22 numbers at 17 digits is some 550 bytes: a longer line is no row.
+constexpr std::size_t kMaxCsvLineBytes = 64 * 1024;
 
 // columns of the trajectory CSV the state is read from (docs/formats.md order)
 constexpr std::size_t kColumnT = 0, kColumnX = 1, kColumnWx = 6, kColumnR00 = 9, kStateColumnsEnd = 18;
@@ -50,21 +54,21 @@ class CsvRows {
     columns_ = split_fields(trajectory_csv_header());
     const std::vector<std::string>& expected = columns_;
     std::string line;
-    if (!std::getline(in_, line)) refuse(0, "the file is empty; expected the header " + header_text());
-    ++line_;
+    if (!read_line(line)) refuse(0, "the file is empty; expected the header " + header_text());
     const std::vector<std::string> got = split_fields(line);
     for (std::size_t c = 0; c < expected.size(); ++c) {
       if (c >= got.size()) refuse(c + 1, "missing column '" + expected[c] + "'; expected the header " + header_text());
-      if (got[c] != expected[c]) refuse(c + 1, "expected column '" + expected[c] + "', got '" + got[c] + "'");
+      if (got[c] != expected[c])
+        refuse(c + 1, "expected column '" + expected[c] + "', got '" + escaped_excerpt(got[c]) + "'");
     }
-    if (got.size() > expected.size()) refuse(expected.size() + 1, "unexpected column '" + got[expected.size()] + "'");
+    if (got.size() > expected.size())
+      refuse(expected.size() + 1, "unexpected column '" + escaped_excerpt(got[expected.size()]) + "'");
   }
 
   // The next row's numbers; false at the end of the file.
   bool next(std::vector<double>& values) {
     std::string line;
-    if (!std::getline(in_, line)) return false;
-    ++line_;
+    if (!read_line(line)) return false;
     const std::vector<std::string> fields = split_fields(line);
     if (fields.size() < columns_.size())
       refuse(fields.size() + 1, "missing column '" + columns_[fields.size()] + "' (the row has " +
@@ -77,12 +81,23 @@ class CsvRows {
       const char* text = fields[c].c_str();
       char* end = nullptr;
       values[c] = std::strtod(text, &end);
-      if (fields[c].empty() || end != text + fields[c].size()) refuse(c + 1, "'" + fields[c] + "' is not a number");
+      if (fields[c].empty() || end != text + fields[c].size())
+        refuse(c + 1, "'" + escaped_excerpt(fields[c]) + "' is not a number");
     }
     return true;
   }
 
   std::size_t line() const { return line_; }
+
+  // The next line, at most kMaxCsvLineBytes long; false at the end of the file.
+  bool read_line(std::string& line) {
+    if (!std::getline(in_, line)) return false;
+    ++line_;
+    if (line.size() > kMaxCsvLineBytes)
+      refuse(0, "the line is " + std::to_string(line.size()) + " bytes long; a trajectory's line is at most " +
+                    std::to_string(kMaxCsvLineBytes));
+    return true;
+  }
 
   // column: 1-based, 0 for the whole line
   [[noreturn]] void refuse(std::size_t column, const std::string& what) const {
@@ -207,28 +222,30 @@ json score_trajectory(const std::string& scene_name, std::istream& csv, const st
   const RunResult& run = scored.run;
   const RunRecord& r = scored.record;
   const std::string& kind = s.reference.kind;
-  return {
-      {"schema", kScoreSchema},
-      {"scene", s.scene.name},
-      {"trajectory", valid_utf8(csv_name)},  // a path: any bytes
-      {"status", status},
-      {"message", message},
-      {"stop_time", run.stop_time},
-      {"output_times", {{"spacing", spacing}, {"t_end", s.times.back()}, {"count", s.times.size()}}},
-      {"reference",
-       {{"kind", kind},
-        {"method", s.reference.method},
-        {"cross_check", s.reference.cross_check},
-        {"error", s.reference.error},
-        {"omega_scale", s.omega_scale},
-        {"message", s.reference.message}}},
-      {"error", errors_json(r.error, kind)},
-      {"error_max", errors_json(r.error_max, kind)},
-      {"scd", finite_or_null(r.error.scd)},
-      {"drift", {{"energy", finite_or_null(r.energy_drift)}, {"rotation_defect", finite_or_null(r.rotation_drift)}}},
-      {"timing",
-       "not measured: the trajectory's timing and cost are the user's; rollbench measured only its "
-       "accuracy and drift, at the output times above, against the suite's reference"}};
+  return {{"schema", kScoreSchema},
+          {"scene", s.scene.name},
+          {"trajectory", valid_utf8(csv_name)},  // a path: any bytes
+          {"status", status},
+          {"message", message},
+          {"stop_time", run.stop_time},
+          {"output_times", {{"spacing", spacing}, {"t_end", s.times.back()}, {"count", s.times.size()}}},
+          {"reference",
+           {{"kind", kind},
+            {"method", s.reference.method},
+            {"cross_check", s.reference.cross_check},
+            {"error", s.reference.error},
+            {"omega_scale", s.omega_scale},
+            {"message", s.reference.message}}},
+          {"error", errors_json(r.error, kind)},
+          {"error_max", errors_json(r.error_max, kind)},
+          {"scd", finite_or_null(r.error.scd)},
+          {"drift",
+           {{"energy", finite_or_null(r.energy_drift)},
+            {"energy_on_group", finite_or_null(r.energy_drift_on_group)},
+            {"rotation_defect", finite_or_null(r.rotation_drift)}}},
+          {"timing",
+           "not measured: the trajectory's timing and cost are the user's; rollbench measured only its "
+           "accuracy and drift, at the output times above, against the suite's reference"}};
 }
 
 }  // namespace rb

@@ -63,14 +63,11 @@ class PeerFields {
   std::string file_;
 };
 
-json read_json(const std::string& path) { return read_json_file(path, "peer file", "peers"); }
-
-// The largest trajectory CSV a peer file may name.
-constexpr std::size_t kMaxPeerTrajectoryBytes = std::size_t{256} << 20;
+json read_json(const std::string& path) { return read_json_file(path, kPeerFileInput, "peers"); }
 
 // A trajectory a peer file names: a relative path inside the peer file's own
 // folder (no absolute path, no "..", no symlink out of it), a regular file
-// of at most kMaxPeerTrajectoryBytes. Its text, or an InputError.
+// of at most kTrajectoryInput's limit. Its text, or an InputError.
 std::string read_peer_trajectory(const std::filesystem::path& folder, const std::string& name, const std::string& key,
                                  const PeerFields& f) {
   namespace fs = std::filesystem;
@@ -83,14 +80,14 @@ std::string read_peer_trajectory(const std::filesystem::path& folder, const std:
   const fs::path resolved = fs::weakly_canonical(base / relative, ec);
   const auto [end, ignored] = std::mismatch(base.begin(), base.end(), resolved.begin(), resolved.end());
   if (ec || end != base.end()) f.refuse(key, "'" + escaped_excerpt(name) + "' leads out of the peer file's folder");
-  return read_regular_file(resolved.string(), "trajectory", key, kMaxPeerTrajectoryBytes);
+  return read_input_file(resolved.string(), kTrajectoryInput, key);
 }
 
 Status status_named(const std::string& name, const PeerFields& f, const std::string& key) {
   for (Status s : {Status::ok, Status::diverged, Status::lift_off, Status::curvature, Status::domain,
                    Status::step_underflow, Status::max_steps, Status::error})
     if (status_name(s) == name) return s;
-  f.refuse(key, "'" + name +
+  f.refuse(key, "'" + escaped_excerpt(name) +
                     "' is not a report status (ok, diverged, lift-off, curvature, domain, step-underflow, "
                     "max-steps, error)");
 }
@@ -133,6 +130,7 @@ RunRecord peer_run(const json& p, const std::string& where, const SweepScene& s,
   r.error_max = error_max;
   r.energy_drift = scored.record.energy_drift;
   r.rotation_drift = scored.record.rotation_drift;
+  r.energy_drift_on_group = scored.record.energy_drift_on_group;
   if (r.status == Status::ok && scored.status != "ok") {
     // the solve said it got there, the file says otherwise
     r.status = scored.status == "diverged" ? Status::diverged : Status::error;

@@ -14,13 +14,6 @@ double window_max(const std::vector<double>& t, const std::vector<double>& value
   return m;
 }
 
-double largest(const std::vector<double>& value) {
-  double m = kNaN;
-  for (const double v : value)
-    if (std::isfinite(v) && !(m >= v)) m = v;
-  return m;
-}
-
 double slope(double from, double to) { return from > 0.0 && to > 0.0 ? std::log2(to / from) : kNaN; }
 
 }  // namespace
@@ -39,37 +32,73 @@ GrowthShape growth_shape(const std::vector<double>& t, const std::vector<double>
   return g;
 }
 
-const char* failure_name(StabilityFailure f) {
-  switch (f) {
-    case StabilityFailure::none: return "none";
-    case StabilityFailure::stopped: return "stopped";
-    case StabilityFailure::energy: return "energy";
-    case StabilityFailure::rotation_defect: return "rotation-defect";
-    case StabilityFailure::energy_growth: return "energy-growth";
-    case StabilityFailure::defect_growth: return "defect-growth";
+const char* blow_up_name(BlowUp b) {
+  switch (b) {
+    case BlowUp::none: return "none";
+    case BlowUp::stopped: return "stopped";
+    case BlowUp::energy: return "energy-blow-up";
+    case BlowUp::rotation_defect: return "defect-blow-up";
   }
   return "none";
 }
 
-RungVerdict judge_rung(Status status, const std::vector<double>& t, const std::vector<double>& energy_error,
-                       const std::vector<double>& rotation_defect, double horizon, const StabilityBounds& b) {
-  RungVerdict v;
-  v.energy_error = largest(energy_error);
-  v.rotation_defect = largest(rotation_defect);
-  v.energy_growth = growth_shape(t, energy_error, horizon, b);
-  v.defect_growth = growth_shape(t, rotation_defect, horizon, b);
-  // the first that holds, in this order; a non-finite value that the run
-  // did not stop for counts as past the bound
-  const auto past = [](const std::vector<double>& s, double bound) {
-    for (const double x : s)
-      if (!(x <= bound)) return true;
-    return false;
+double first_past(const std::vector<double>& t, const std::vector<double>& value, double bound) {
+  for (std::size_t i = 0; i < t.size() && i < value.size(); ++i)
+    if (!(value[i] <= bound)) return t[i];
+  return kNaN;
+}
+
+HorizonVerdict judge_horizon(bool stopped_by, const DriftSeries& s, double horizon, double step,
+                             const StabilityBounds& b) {
+  HorizonVerdict v;
+  v.horizon = horizon;
+  // the states up to T (the series are in time order)
+  std::size_t n = 0;
+  while (n < s.t.size() && s.t[n] <= horizon * (1 + 1e-12)) ++n;
+  const auto upto = [n](const std::vector<double>& x) {
+    return std::vector<double>(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(std::min(n, x.size())));
   };
-  if (status != Status::ok) v.failure = StabilityFailure::stopped;
-  else if (past(energy_error, b.energy_fraction)) v.failure = StabilityFailure::energy;
-  else if (past(rotation_defect, b.rotation_defect)) v.failure = StabilityFailure::rotation_defect;
-  else if (v.energy_growth.exponential) v.failure = StabilityFailure::energy_growth;
-  else if (v.defect_growth.exponential) v.failure = StabilityFailure::defect_growth;
+  const std::vector<double> t = upto(s.t), energy = upto(s.energy), flat = upto(s.energy_flat), defect = upto(s.defect);
+  const auto largest = [](const std::vector<double>& x) {
+    double m = kNaN;
+    for (const double y : x)
+      if (std::isfinite(y) && !(m >= y)) m = y;
+    return m;
+  };
+  const auto earliest = [](double a, double c) { return std::isnan(a) || c < a ? c : a; };
+  v.energy_error = largest(energy);
+  v.energy_error_flat = largest(flat);
+  v.rotation_defect = largest(defect);
+  v.energy_growth = growth_shape(t, energy, horizon, b);
+  v.defect_growth = growth_shape(t, defect, horizon, b);
+  const double energy_out = first_past(t, energy, b.energy_fraction);
+  const double defect_out = first_past(t, defect, b.rotation_defect);
+  v.energy_within = std::isnan(energy_out);
+  v.defect_within = std::isnan(defect_out);
+  v.crossed_at = earliest(energy_out, defect_out);
+  // the failures: the stop (the last state recorded) and the blow-up bounds
+  const double energy_blown = first_past(t, energy, b.blow_up_energy);
+  const double defect_blown = first_past(t, defect, b.blow_up_defect);
+  const double stop = stopped_by && !t.empty() ? t.back() : kNaN;
+  v.failed_at = earliest(earliest(stop, energy_blown), defect_blown);
+  // the step's own failure: before the first crossing, or within
+  // blow_up_steps steps of it (to the first state recorded there: the
+  // states are whole steps, not every step)
+  double grace = kNaN;
+  if (!std::isnan(v.crossed_at)) {
+    grace = v.crossed_at + b.blow_up_steps * step;
+    for (const double x : t)
+      if (x >= grace * (1 - 1e-12)) {
+        grace = x;
+        break;
+      }
+  }
+  if (!std::isnan(v.failed_at) && (std::isnan(grace) || v.failed_at <= grace)) {
+    // the first of them, in this order where two fall on one state
+    if (v.failed_at == stop) v.blow_up = BlowUp::stopped;
+    else if (v.failed_at == energy_blown) v.blow_up = BlowUp::energy;
+    else v.blow_up = BlowUp::rotation_defect;
+  }
   return v;
 }
 

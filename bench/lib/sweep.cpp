@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include "bench/lib/drift.hpp"
@@ -16,6 +17,7 @@
 #include "integrators/registry.hpp"
 #include "integrators/step_size.hpp"
 #include "problems/input_error.hpp"
+#include "problems/safe_name.hpp"
 #include "problems/so3.hpp"
 #include "problems/utf8.hpp"
 
@@ -120,6 +122,7 @@ void measure_end(const SweepScene& s, const RunResult& run, RunRecord& r) {
 void measure_grid(const SweepScene& s, const RunResult& run, RunRecord& r) {
   const Drift drift = largest_drift(s.problem, run.output);
   r.energy_drift = drift.energy;
+  r.energy_drift_on_group = drift.energy_on_group;
   r.rotation_drift = drift.rotation_defect;
   r.error_max.floor = s.reference.error;
   if (!reached_end(s, run)) return;
@@ -145,6 +148,25 @@ double largest_omega(const Reference& reference) {
   double w = 0.0;
   for (const ReferencePoint& p : reference.points) w = std::max(w, p.omega.norm());
   return w > 0.0 ? w : 1.0;
+}
+
+// One name, one scene: the report keys references, runs and fits by the
+// scene's name, so two scenes of one name (two files both "plane", a file
+// named like a shipped scene) are refused, as is one scene given twice among
+// the sweep's own (the first `own` of loaded; the studies' scenes after
+// them may be the sweep's again).
+void check_one_scene_per_name(const std::vector<std::string>& given, const std::vector<Scene>& loaded,
+                              std::size_t own) {
+  std::map<std::string, std::size_t> first;
+  for (std::size_t i = 0; i < loaded.size(); ++i) {
+    const auto [at, inserted] = first.try_emplace(loaded[i].name, i);
+    if (inserted) continue;
+    const std::string a = escaped_excerpt(given[at->second], 200), b = escaped_excerpt(given[i], 200);
+    const std::string name = escaped_excerpt(loaded[i].name);
+    if (loaded[at->second].text != loaded[i].text)
+      throw InputError("'" + a + "' and '" + b + "' are two different scenes named '" + name + "'", "scenes");
+    if (i < own) throw InputError("scene '" + name + "' is given twice ('" + a + "' and '" + b + "')", "scenes");
+  }
 }
 
 }  // namespace
@@ -180,6 +202,25 @@ std::vector<SweepScene> prepare_scenes(const SweepSpec& spec, bool with_referenc
         throw InputError("in " + name + ": " + e.what(), "scenes");
       }
     }
+  check_one_scene_per_name(names, loaded, loaded.size());
+  if (with_references) {
+    // the stability and horizon studies' scenes go into the same report, by
+    // name: a file named like a shipped scene they run is refused too
+    std::vector<std::string> given = names;
+    std::vector<Scene> every = loaded;
+    for (const auto& [enabled, list] : {std::pair{spec.stability.enabled, &spec.stability.scenes},
+                                        std::pair{spec.horizon.enabled, &spec.horizon.scenes}})
+      for (const std::string& name : enabled ? *list : std::vector<std::string>{})
+        if (std::find(given.begin(), given.end(), name) == given.end()) {
+          try {
+            every.push_back(load_scene(name));
+          } catch (const InputError& e) {
+            throw InputError("in " + name + ": " + e.what(), "scenes");
+          }
+          given.push_back(name);
+        }
+    check_one_scene_per_name(given, every, loaded.size());
+  }
   std::vector<SweepScene> out;
   const auto start = std::chrono::steady_clock::now();
   for (const std::string& name : names) {
@@ -305,10 +346,12 @@ RunRecord run_task(const SweepScene& s, const SweepTask& task, long max_steps) {
       r.error_grid = r.error_max;
       r.has_error_grid = true;
       const double energy = r.energy_drift, rotation = r.rotation_drift;  // the drift keeps the grid's points
+      const double energy_on_group = r.energy_drift_on_group;
       r.error_max = RunErrors{};
       measure_grid(s, run, r);
       r.energy_drift = energy;
       r.rotation_drift = rotation;
+      r.energy_drift_on_group = energy_on_group;
     }
     // the drivers check lift-off and curvature at outputs only: a failure
     // the grid run meets before the timed run's end or stop stands for the run

@@ -83,6 +83,9 @@ struct RunRecord {
   bool has_error_grid = false;
   double energy_drift = kNaN;    // max |H(t) - H(0)| over the error grid
   double rotation_drift = kNaN;  // max ||R^T R - I||_F over the error grid
+  // max |H(polar(R), v, alpha) - H(0)| over the error grid: the energy at the
+  // nearest rotation (bench/lib/drift.hpp), what the findings read
+  double energy_drift_on_group = kNaN;
   FlatState final_state = FlatState::Zero();
   ReferencePoint final_point{};  // final_state in the error components
   double final_energy = kNaN;

@@ -27,7 +27,26 @@ static_assert(std::atomic<int>::is_always_lock_free, "the signal handler reads t
 
 Slot slots[kMaxRegisteredTemporaries];
 
-constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
+// Every signal whose default action ends the process and that can be
+// caught: those a user or a system sends (INT, TERM, HUP, QUIT, USR1, USR2,
+// ALRM, VTALRM, PROF, XCPU, XFSZ, PIPE, POLL, PWR, STKFLT) and those of a
+// fault (ABRT, BUS, FPE, ILL, SEGV, SYS, TRAP), after which the table is
+// still only read; the real-time signals are added at install. The handler
+// unlinks and re-raises, so each still ends the process, a core dump
+// included where its default makes one. (KILL and STOP cannot be caught.)
+constexpr int kSignals[] = {SIGINT,  SIGTERM, SIGHUP,  SIGQUIT, SIGUSR1, SIGUSR2, SIGALRM,   SIGVTALRM,
+                            SIGPROF, SIGXCPU, SIGXFSZ, SIGPIPE, SIGPOLL, SIGPWR,  SIGSTKFLT, SIGABRT,
+                            SIGBUS,  SIGFPE,  SIGILL,  SIGSEGV, SIGSYS,  SIGTRAP};
+
+// kSignals and SIGRTMIN..SIGRTMAX (not constants: the C library keeps the
+// first few real-time signals for itself).
+sigset_t handled_signals() {
+  sigset_t set;
+  sigemptyset(&set);
+  for (const int signal_number : kSignals) sigaddset(&set, signal_number);
+  for (int signal_number = SIGRTMIN; signal_number <= SIGRTMAX; ++signal_number) sigaddset(&set, signal_number);
+  return set;
+}
 
 void remove_temporaries(int signal_number) {
   const int saved = errno;
@@ -42,14 +61,15 @@ void remove_temporaries(int signal_number) {
 }
 
 void install_handlers() {
-  for (const int signal_number : kSignals) {
+  const sigset_t handled = handled_signals();
+  for (int signal_number = 1; signal_number < NSIG; ++signal_number) {
+    if (sigismember(&handled, signal_number) != 1) continue;
     struct sigaction old {};
     if (::sigaction(signal_number, nullptr, &old) != 0) continue;
     if ((old.sa_flags & SA_SIGINFO) || old.sa_handler != SIG_DFL) continue;  // ignored, or someone else's
     struct sigaction action {};
     action.sa_handler = remove_temporaries;
-    sigemptyset(&action.sa_mask);
-    for (const int other : kSignals) sigaddset(&action.sa_mask, other);
+    action.sa_mask = handled;  // one handler at a time
     action.sa_flags = SA_RESETHAND;
     ::sigaction(signal_number, &action, nullptr);
   }

@@ -1,11 +1,14 @@
 #pragma once
-// The output temporaries this process has open, for its signal handler: a
-// SIGINT, SIGTERM or SIGHUP removes them (unlinkat on the folder's
-// descriptor, async-signal-safe), then the signal takes its default action,
-// so the process still ends by that signal. A signal that was ignored when
-// the first temporary was registered (nohup's SIGHUP) or handled by someone
-// else is left so. SIGKILL cannot be caught: its temporary stays, named
-// `.NAME.tmp.*` beside the target (docs/formats.md).
+// The output temporaries this process has open, for its signal handler:
+// every signal that ends a process by default and can be caught (INT, TERM,
+// HUP, QUIT, USR1, USR2, ALRM, VTALRM, PROF, XCPU, XFSZ, PIPE, POLL, PWR,
+// STKFLT, the real-time signals, and a fault's ABRT, BUS, FPE, ILL, SEGV,
+// SYS, TRAP) removes them (unlinkat on the folder's descriptor,
+// async-signal-safe), then the signal takes its default action, so the
+// process still ends by that signal. A signal that was ignored when the
+// first temporary was registered (nohup's SIGHUP) or handled by someone else
+// (a sanitizer's SIGSEGV) is left so. SIGKILL cannot be caught: its
+// temporary stays, named `.NAME.tmp.*` beside the target (docs/formats.md).
 namespace rb {
 
 // At most this many temporaries at once are removed on a signal (a sweep's

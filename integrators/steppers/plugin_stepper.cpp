@@ -16,6 +16,7 @@
 #include "problems/so3.hpp"
 #include "problems/state.hpp"
 #include "problems/utf8.hpp"
+#include "problems/whole_number.hpp"
 
 namespace rb {
 
@@ -267,14 +268,19 @@ std::unique_ptr<Integrator> load_plugin_stepper(const std::string& path, const P
                      "stepper");
   if (fields[0] == "error" && fields.size() == 2) throw InputError(valid_utf8(fields[1]), "stepper");
   if (fields[0] == "null" && fields.size() == 1) (void)checked_facts(nullptr, where, path);
-  if (fields[0] != "info" || fields.size() != 6)
+  // the order and view as the child wrote them (std::to_string of ints),
+  // read strictly: anything else is no whole answer, never atoi's guess
+  constexpr long long kIntMin = std::numeric_limits<int>::min(), kIntMax = std::numeric_limits<int>::max();
+  const auto order = fields.size() == 6 ? whole_number_in(fields[4], kIntMin, kIntMax) : std::nullopt;
+  const auto view = fields.size() == 6 ? whole_number_in(fields[5], kIntMin, kIntMax) : std::nullopt;
+  if (fields[0] != "info" || !order || !view)
     throw InputError("'" + path + "': loading it (in a child process) returned no whole answer", "stepper");
   struct rollbench_stepper_info info {};
   info.name = fields[1].c_str();
   info.family = fields[2].c_str();
   info.description = fields[3].c_str();
-  info.order = std::atoi(fields[4].c_str());
-  info.view = std::atoi(fields[5].c_str());
+  info.order = static_cast<int>(*order);
+  info.view = static_cast<int>(*view);
   MethodInfo facts = checked_facts(&info, where, path);
   return std::make_unique<PluginStepper>(std::move(facts), nullptr, absolute, info.view == ROLLBENCH_VIEW_LIE,
                                          isolation);

@@ -1,8 +1,10 @@
 """The horizon study's figure, summary section and findings line from a
-hand-made report: power laws with known exponents (the runner's fits
-written beside them), a method at rounding level, one that stopped, one
-whose fit is not yet asymptotic and one whose energy series the report
-marks the same as another's."""
+hand-made report: power laws with known exponents (the runner's classes
+and fits written beside them), a method at rounding level, one that
+stopped, one whose class is undecided (its per-decade slopes climbing)
+and one whose energy series the report marks the same as another's; a
+run the study took on a decade further, one the budget stopped, and a
+report older than the classes."""
 import math
 import os
 import tempfile
@@ -22,20 +24,34 @@ from tests.analysis import synthetic as syn  # noqa: E402
 H = 2.0 ** -7
 STEPS = 10000
 T = [H * n for n in (1, 3, 10, 32, 100, 316, 1000, 3162, 10000)]
-T_FROM = T[-1] / 100
+T_FROM = T[-1] / 1000  # the class window: the last three decades
 
 
-def fit(p, c, at_rounding=False, rounding=1e-11, halves=None):
-    early, late = halves or (p - 0.05, p + 0.05)
-    return {"p": p, "ci95": 0.01, "p_early": early, "p_late": late, "log10_c": math.log10(c),
-            "t_from": T_FROM, "t_to": T[-1], "points": 5, "largest": c * T[-1] ** p, "rounding_level": rounding,
-            "at_rounding": at_rounding, "asymptotic": abs(late - early) <= 0.15, "why_none": None}
+def band(p):
+    """The runner's class of a decided exponent (bench/lib/growth_class.cpp, band_of)."""
+    for hi, name in ((0.25, "bounded"), (0.75, "power"), (1.25, "linear"), (1.75, "power"), (2.25, "quadratic")):
+        if p <= hi:
+            return name
+    return "power"
+
+
+def fit(p, c, at_rounding=False, rounding=1e-11, slopes=None, cls=None):
+    """The runner's fit of C t^p: its class (p's band, "rounding" at rounding, or cls) and the slopes over the
+    window's three decades (p in each, or slopes)."""
+    slopes = slopes or (p, p, p)
+    decades = [{"t_from": T[-1] / 10 ** (3 - i), "t_to": T[-1] / 10 ** (2 - i), "p": x, "ci95": 0.02, "points": 9}
+               for i, x in enumerate(slopes)]
+    cls = cls or ("rounding" if at_rounding else band(p))
+    return {"class": cls, "reason": f"{cls} (made by hand)", "p": p, "ci95": 0.01, "log10_c": math.log10(c),
+            "t_from": T_FROM, "t_to": T[-1], "points": 25, "largest": c * T[-1] ** p, "rounding_level": rounding,
+            "at_rounding": at_rounding, "decades": decades, "p_earlier": sum(slopes[:-1]) / (len(slopes) - 1),
+            "ci95_earlier": 0.01, "p_last": slopes[-1], "ci95_last": 0.02}
 
 
 def no_fit(why):
-    return {"p": None, "ci95": None, "p_early": None, "p_late": None, "log10_c": None, "t_from": T_FROM,
+    return {"class": None, "reason": why, "p": None, "ci95": None, "log10_c": None, "t_from": T_FROM,
             "t_to": T[-1], "points": 0, "largest": None, "rounding_level": 1e-11, "at_rounding": False,
-            "why_none": why}
+            "decades": [], "p_earlier": None, "ci95_earlier": None, "p_last": None, "ci95_last": None}
 
 
 def horizon_run(index, scene, name, family, energy, defect, status="ok", stop=None):
@@ -68,7 +84,7 @@ def with_horizon(report):
                  horizon_run(base + 2, scene, "euler", "rk", None, None, status="domain", stop=12.0)]
         if scene == "bumpy-long":
             moving = horizon_run(base + 3, scene, "cf4", "cf", (0.45, 1e-9), (0.5, 1e-16))
-            moving["fit"]["energy_error"] = fit(0.45, 1e-9, halves=(0.30, 0.63))
+            moving["fit"]["energy_error"] = fit(0.45, 1e-9, slopes=(0.30, 0.45, 0.63), cls="undecided")
             twin = horizon_run(base + 4, scene, "rk4-projected", "projection", (1.0, 1e-9), (0.5, 1e-16))
             twin["same_as"] = {"energy_error": "rk4", "rotation_defect": None}
             runs += [moving, twin]
@@ -99,8 +115,8 @@ class HorizonFromAHandMadeReport(unittest.TestCase):
             self.assertIn("euler: domain at t = 12", labels)
         energy = [line.get_label() for line in labelled(axes[0])]
         defect = [line.get_label() for line in labelled(axes[1])]
-        self.assertIn("rk4: p = 1.00 ± 0.01", energy)
-        self.assertIn("rkmk4: p = 0.50 ± 0.01", energy)
+        self.assertIn("rk4: linear, p = 1.00 ± 0.01", energy)
+        self.assertIn("rkmk4: power, p = 0.50 ± 0.01", energy)
         self.assertIn("rkmk4: p = 0.50 ± 0.01 (rounding)", defect)
         # the fitted line is the report's C t^p over its window
         fits = [line for line in axes[1].get_lines() if line.get_label() == "_fit"]
@@ -135,15 +151,18 @@ class HorizonFromAHandMadeReport(unittest.TestCase):
         self.assertEqual(rk4[3], "ok")
         self.assertEqual(rk4[4], "10,000")
         self.assertEqual(rk4[5], "1.00 ± 0.01")
-        self.assertEqual(rk4[6], "0.95 → 1.05")
+        self.assertEqual(rk4[6], "linear (1.00, 1.00, 1.00)")
         self.assertAlmostEqual(md.as_number(rk4[10]), 1e-6 * T[-1], delta=1e-6 * T[-1] * 1e-2)
         self.assertEqual(by[("bumpy-long", "rkmk4")][1], "homogeneous")
         self.assertEqual(by[("bumpy-long", "rkmk4")][8], "0.50 ± 0.01 (rounding)")
+        self.assertEqual(by[("bumpy-long", "rkmk4")][9], "rounding")
         euler = by[("bumpy-long", "euler")]
         self.assertEqual(euler[3], "domain at t = 12")
         self.assertEqual(euler[5], "—")
+        self.assertEqual(euler[6], "—")
         self.assertIn(f"- [Long horizons](#{summary.slug('Long horizons')})", self.markdown)
-        self.assertIn("over t = 0.781 – 78.1 s (the last 2 decades of the run)", self.markdown)
+        self.assertIn("over the last 3 decades of t", self.markdown)
+        self.assertNotIn("budget ended", self.markdown)  # no run was stopped by the budget
         failures = md.parse_table(self.markdown, "## Failures")
         self.assertIn(["bumpy-long", "euler (horizon run)", "h=0.0078125", "domain", "12", "left the domain"],
                       failures)
@@ -160,15 +179,21 @@ class HorizonFromAHandMadeReport(unittest.TestCase):
         findings = self.markdown.split("## Contents")[0]
         self.assertIn(line, findings)
 
-    def test_a_fit_whose_halves_disagree_is_not_yet_asymptotic(self):
+    def test_an_undecided_class_reads_undecided_with_its_slopes_and_no_p(self):
         rows = {(r[0], r[2]): r for r in md.parse_table(self.markdown, horizon.HEADING)}
-        self.assertEqual(rows[("bumpy-long", "cf4")][5], "not yet asymptotic (0.30 → 0.63)")
-        self.assertEqual(rows[("bumpy-long", "rk4")][5], "1.00 ± 0.01")  # 0.95 → 1.05: within 0.15
+        self.assertEqual(rows[("bumpy-long", "cf4")][5], "undecided")
+        self.assertEqual(rows[("bumpy-long", "cf4")][6], "undecided (0.30, 0.45, 0.63)")
+        self.assertEqual(rows[("bumpy-long", "rk4")][5], "1.00 ± 0.01")
         line = next(x for x in self.markdown.splitlines() if x.startswith("- Long horizon on bumpy-long "))
-        self.assertIn("energy error not yet asymptotic (p early → late) for cf4 (0.30 → 0.63)", line)
-        self.assertNotIn("0.45", line)  # no single p for it
-        # the halves within the report's spread read as one p
+        self.assertIn("energy error undecided (slopes a decade) for cf4 at 10,000 steps (0.30, 0.45, 0.63)", line)
+        self.assertNotIn("(cf4)", line)  # not in the range of exponents
+        # the decided classes' exponents
         self.assertIn("energy error ∝ tᵖ with p from 0.50 (rkmk4) to 1.00 (rk4 = rk4-projected)", line)
+        palette = style.Palette(rp.families(self.report))
+        energy = horizon.figure(self.report, "bumpy-long", palette).get_axes()[0]
+        self.assertIn("cf4: undecided at 10,000 steps (0.30, 0.45, 0.63)", [x.get_label() for x in labelled(energy)])
+        # no fitted line for it: rk4's (shared with rk4-projected) and rkmk4's only
+        self.assertEqual(len([x for x in energy.get_lines() if x.get_label() == "_fit"]), 2)
 
     def test_a_series_the_same_as_another_is_drawn_and_stated_once(self):
         line = next(x for x in self.markdown.splitlines() if x.startswith("- Long horizon on bumpy-long "))
@@ -182,9 +207,8 @@ class HorizonFromAHandMadeReport(unittest.TestCase):
         palette = style.Palette(rp.families(self.report))
         energy, defect = horizon.figure(self.report, "bumpy-long", palette).get_axes()
         labels = [line.get_label() for line in labelled(energy)]
-        self.assertIn("rk4 = rk4-projected: p = 1.00 ± 0.01", labels)
+        self.assertIn("rk4 = rk4-projected: linear, p = 1.00 ± 0.01", labels)
         self.assertFalse(any(x.startswith("rk4-projected") for x in labels), labels)
-        self.assertIn("cf4: not yet asymptotic (0.30 → 0.63)", labels)
         # its defect is its own: drawn
         self.assertIn("rk4-projected: p = 0.50 ± 0.01 (rounding)", [x.get_label() for x in labelled(defect)])
 
@@ -199,6 +223,75 @@ class HorizonFromAHandMadeReport(unittest.TestCase):
         self.assertIn("no horizon study", "\n".join(horizon.section(report)))
         self.assertEqual(horizon.finding_lines(report), [])
         self.assertEqual(horizon.scenes(report), [])  # plot.py draws horizon-<scene>.png for these only
+
+
+def with_decades(report):
+    """gaussian-hills-chaplygin: rk4 linear at the study's 10,000 steps; gauss2 undecided at 10,000 and at
+    100,000 steps, where the budget ended it; dla2 undecided at 10,000 steps, then bounded at 100,000."""
+    report = dict(report)
+    scene = "gaussian-hills-chaplygin"
+    rk4 = horizon_run(0, scene, "rk4", "rk", (1.0, 1e-9), (1.0, 1e-6))
+    gauss = horizon_run(1, scene, "gauss2", "gauss", (0.6, 1e-9), (0.5, 1e-16))
+    dla = horizon_run(2, scene, "dla2", "nonholonomic-variational", (0.01, 1e-8), (0.5, 1e-16))
+    gauss["fit"]["energy_error"] = fit(0.6, 1e-9, slopes=(0.58, 0.78, -0.13), cls="undecided")
+    for run in (rk4, gauss, dla):
+        run["r_feeds_back"] = True
+        run["study_steps"] = STEPS
+        run["earlier_runs"] = []
+    for run in (gauss, dla):
+        run["steps_planned"] = 10 * STEPS
+        run["earlier_runs"] = [{"steps": STEPS, "t_end": T[-1], "status": "ok", "cpu_s": 1.0, "wall_s": 1.5,
+                                "largest": {"energy_error": 1e-6, "energy_error_on_group": 1e-6,
+                                            "rotation_defect": 1e-15},
+                                "class": {"energy_error": "undecided", "energy_error_on_group": "undecided",
+                                          "rotation_defect": "rounding"}}]
+    gauss["budget_ran_out"] = True
+    gauss["budget_reason"] = "the next decade, 1000000 steps, is past the study's most, 100000 (--horizon-steps-max)"
+    report["horizon"] = {"runs": [rk4, gauss, dla]}
+    return report
+
+
+class HorizonDecades(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.report = with_decades(syn.make_report())
+        cls.markdown = summary.summary_markdown(cls.report)
+
+    def line(self):
+        return next(x for x in self.markdown.splitlines() if x.startswith("- Long horizon on gaussian-hills-ch"))
+
+    def test_the_findings_say_where_the_budget_ended_an_undecided_class(self):
+        line = self.line()
+        self.assertIn("(R feeds back, 10,000 steps (undecided runs on to 100,000) of h = 0.0078125 s)", line)
+        self.assertIn("energy error undecided (slopes a decade) for gauss2 at 100,000 steps (0.58, 0.78, -0.13)",
+                      line)
+        self.assertIn("the budget ended the study undecided for gauss2", line)
+        # the decided classes only in the range of exponents
+        self.assertIn("energy error ∝ tᵖ with p from 0.01 (dla2) to 1.00 (rk4)", line)
+        self.assertIn("Undecided where the budget ended the study (the next decade not run):", self.markdown)
+        self.assertIn("- gauss2 on gaussian-hills-chaplygin at 100,000 steps: the next decade, 1000000 steps, is "
+                      "past the study's most, 100000 (--horizon-steps-max)", self.markdown)
+        self.assertIn("3 runs, 2 of them run again a decade on", self.markdown)
+
+    def test_the_figure_draws_the_longest_run_and_its_title_says_so(self):
+        palette = style.Palette(rp.families(self.report))
+        energy = horizon.figure(self.report, "gaussian-hills-chaplygin", palette).get_axes()[0]
+        self.assertIn("10,000 steps (undecided runs on to 100,000)", energy.get_title())
+        labels = [x.get_label() for x in labelled(energy)]
+        self.assertIn("gauss2: undecided at 100,000 steps (0.58, 0.78, -0.13)", labels)
+        self.assertIn("dla2: bounded, p = 0.01 ± 0.01", labels)
+
+    def test_a_report_older_than_the_classes_decides_nothing(self):
+        report = with_horizon(syn.make_report())
+        for run in report["horizon"]["runs"]:
+            for f in run["fit"].values():
+                f.pop("class")
+                f.pop("decades")
+        markdown = summary.summary_markdown(report)
+        line = next(x for x in markdown.splitlines() if x.startswith("- Long horizon on chaplygin-bumpy-long "))
+        self.assertNotIn("∝ tᵖ", line)
+        self.assertIn("energy error undecided (slopes a decade) for rk4 at 10,000 steps", line)
+        self.assertIn("stays at rounding for rkmk4", line)
 
 
 def with_invariants(report):
@@ -239,8 +332,8 @@ class HorizonInvariants(unittest.TestCase):
         self.assertIn("routh-paraboloid.J2 error", axes[3].get_title())
         j1 = [line.get_label() for line in labelled(axes[2])]
         j2 = [line.get_label() for line in labelled(axes[3])]
-        self.assertIn("rk4 = cf4: p = 1.00 ± 0.01", j1)
-        self.assertIn("rk4 = cf4: p = 2.00 ± 0.01", j2)
+        self.assertIn("rk4 = cf4: linear, p = 1.00 ± 0.01", j1)
+        self.assertIn("rk4 = cf4: quadratic, p = 2.00 ± 0.01", j2)
         self.assertFalse(any(x.startswith("cf4") for x in j1 + j2), j1 + j2)  # drawn once, under rk4
         self.assertIn("rkmk4: p = 0.50 ± 0.01 (rounding)", j2)
         self.assertIn("euler: domain at t = 12", j1)
@@ -252,7 +345,7 @@ class HorizonInvariants(unittest.TestCase):
         self.assertEqual(len(rows), 8)
         by = {(r[1], r[2]): r for r in rows}
         self.assertEqual(by[("rk4", "routh-paraboloid.J2")][3], "2.00 ± 0.01")
-        self.assertEqual(by[("rk4", "routh-paraboloid.J2")][4], "1.95 → 2.05")
+        self.assertEqual(by[("rk4", "routh-paraboloid.J2")][4], "quadratic (2.00, 2.00, 2.00)")
         end = 1e-8 * T[-1]
         self.assertAlmostEqual(md.as_number(by[("rk4", "routh-paraboloid.J1")][5]), end, delta=end * 1e-2)
         self.assertEqual(by[("rkmk4", "routh-paraboloid.J1")][3], "0.50 ± 0.01 (rounding)")

@@ -14,7 +14,7 @@ import numpy as np  # noqa: E402
 from analysis import horizon_ladder as ladder  # noqa: E402
 from analysis import plot  # noqa: E402
 from tests.analysis import synthetic as syn  # noqa: E402
-from tests.analysis.test_horizon import horizon_run  # noqa: E402
+from tests.analysis.test_horizon import fit, horizon_run  # noqa: E402
 
 
 def sweep_run(scene, name, defect):
@@ -83,9 +83,9 @@ class Ladder(unittest.TestCase):
         self.assertIn("no run keeps the relative energy error under 1e-06 (steps h)", hills)
 
     def test_the_last_line_names_where_symmetry_kept_the_energy_and_where_not(self):
-        self.assertEqual(self.lines[-1], "- Reversibility and the energy (bounded: p ≤ 0.25 or rounding): symmetry "
-                                         "kept every symmetric method's energy bounded on paraboloid; a symmetric "
-                                         "method's energy grew on gaussian-hills.")
+        self.assertEqual(self.lines[-1], "- Reversibility and the energy (decided classes only; bounded: p ≤ 0.25 or "
+                                         "rounding): symmetry kept every symmetric method's energy bounded on "
+                                         "paraboloid; a symmetric method's energy grew on gaussian-hills.")
 
     def test_classes_of_a_growth_fit(self):
         runs = self.report["horizon"]["runs"]
@@ -121,9 +121,9 @@ def variational_report():
         dla = horizon_run(base + 1, scene, "dla2", ladder.VARIATIONAL_FAMILY, (0.01, 1e-8), (0.5, 1e-16))
         dg = horizon_run(base + 2, scene, "dg2", ladder.DISCRETE_GRADIENT_FAMILY, (0.5, 1e-16), (0.5, 1e-16))
         gauss["fit"]["energy_error"]["p"], dla["fit"]["energy_error"]["p"] = gauss_law[0], 0.01
-        dg["fit"]["energy_error"]["at_rounding"] = True
-        if scene == "gaussian-hills-chaplygin":  # gauss2's halves disagree: undecided
-            gauss["fit"]["energy_error"].update(p_early=0.01, p_late=0.5, asymptotic=False)
+        dg["fit"]["energy_error"].update(at_rounding=True, **{"class": "rounding"})
+        if scene == "gaussian-hills-chaplygin":  # gauss2's slopes still climb: undecided
+            gauss["fit"]["energy_error"] = fit(0.30, 1e-7, slopes=(0.17, 0.59, 0.77), cls="undecided")
         gauss["cpu_s"], dla["cpu_s"], dg["cpu_s"] = 2.0, 1.0, 3.0
         runs += [gauss, dla, dg]
     report["horizon"] = {"runs": runs}
@@ -170,6 +170,49 @@ class Variational(unittest.TestCase):
             line = next(x for x in lines if x.startswith(f"- Variational structure, {scene}:"))
             self.assertIn("symmetry alone kept it bounded too (lie-gauss2): no boundedness added", line)
         self.assertIn("nothing beyond symmetry on paraboloid, gaussian-hills, gaussian-hills-chaplygin", lines[-1])
+
+    def test_only_decided_classes_are_compared(self):
+        # gaussian-hills: gauss2 grows, dla2 bounded ("bounded where symmetry alone did not"); add a symmetric
+        # lie-gauss2 that is undecided there, and the claim waits for it
+        report = variational_report()
+        runs = report["horizon"]["runs"]
+        undecided = dict(next(r for r in runs if r["scene"] == "gaussian-hills" and r["integrator"] == "gauss2"),
+                         integrator="lie-gauss2", family="lie-gauss", index=len(runs))
+        undecided["fit"] = dict(undecided["fit"], energy_error=fit(0.3, 1e-7, slopes=(0.1, 0.3, 0.5),
+                                                                   cls="undecided"))
+        runs.append(undecided)
+        report["runs"] = list(report["runs"]) + [sweep_run("gaussian-hills", "lie-gauss2", 3e-15)]
+        line = next(x for x in ladder.finding_lines(report) if x.startswith("- Variational structure, gaussian-hills:"))
+        self.assertNotIn("where symmetry alone did not", line)
+        self.assertIn("it keeps the energy bounded where symmetry alone is still undecided (lie-gauss2; gauss2 grow)",
+                      line)
+        # the variational method undecided: nothing compared, whatever the others do
+        dla = next(r for r in runs if r["scene"] == "gaussian-hills" and r["integrator"] == "dla2")
+        dla["fit"] = dict(dla["fit"], energy_error=fit(0.1, 1e-8, slopes=(0.02, 0.02, 0.20), cls="undecided"))
+        lines = ladder.finding_lines(report)
+        line = next(x for x in lines if x.startswith("- Variational structure, gaussian-hills:"))
+        self.assertIn("dla2's energy undecided at 10,000 steps (0.02, 0.02, 0.20)", line)
+        self.assertIn("not compared: its class is undecided", line)
+        self.assertNotIn("bounded where", line)
+        self.assertIn("undecided on gaussian-hills", lines[-1])
+        self.assertNotIn("bounded where symmetry alone was not on gaussian-hills", lines[-1])
+
+    def test_a_run_taken_a_decade_further_is_priced_over_the_study_s_horizon(self):
+        # gauss2 on the paraboloid went on to 10 times the steps (12.5 s CPU); its first run, over the study's
+        # horizon, took 1.2 s and reached 5e-7 of the energy scale
+        report = ladder_report()
+        gauss = next(r for r in report["horizon"]["runs"]
+                     if r["scene"] == "paraboloid" and r["integrator"] == "gauss2")
+        gauss["cpu_s"] = 12.5
+        gauss["earlier_runs"] = [{"steps": 10000, "t_end": 78.125, "status": "ok", "cpu_s": 1.2, "wall_s": 1.3,
+                                  "largest": {"energy_error": 6e-7, "energy_error_on_group": None,
+                                              "rotation_defect": 1e-16},
+                                  "class": {"energy_error": "undecided", "energy_error_on_group": None,
+                                            "rotation_defect": "rounding"}}]
+        self.assertAlmostEqual(ladder.relative_energy_error(gauss), 6e-7 / 1.2)
+        self.assertEqual(ladder.cpu_seconds(gauss), 1.2)
+        para = next(x for x in ladder.finding_lines(report) if x.startswith("- Ladder, paraboloid "))
+        self.assertIn("cheapest under 1e-06 relative energy error: gauss2, 1.2 s CPU (4.8 × rk4's 0.25 s at h)", para)
 
     def test_no_variational_run_no_line(self):
         self.assertFalse([line for line in ladder.finding_lines(ladder_report()) if "ariational" in line])

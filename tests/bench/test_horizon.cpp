@@ -1,7 +1,9 @@
-// The horizon study (bench/lib/horizon.hpp): the growth fit recovers p of a
-// synthetic C t^p, and only over its window, and says whether its halves
-// agree; the series is the envelope over each window (every step measured,
-// compared), not a running maximum; a flat RK4's rotation defect grows
+// The horizon study (bench/lib/horizon.hpp): every series is classed by
+// classify_growth (bench/lib/growth_class.hpp, its own tests) with the
+// study's rules; an undecided class runs the next decade while the budget
+// allows, and says when the budget stopped it; the series is the envelope
+// over each window (every step measured, compared; the window grid alone
+// gives the same), not a running maximum; a flat RK4's rotation defect grows
 // linearly where R feeds back while RKMK4's stays at rounding level (on the
 // group by construction); series identical by construction are marked once,
 // within a sweep and across merged shards; a failing method is a record
@@ -25,59 +27,6 @@ namespace rb {
 namespace {
 
 namespace fs = std::filesystem;
-
-// err = c t^p at 10 samples a decade over [1, 10^4]
-void power_law(double c, double p, std::vector<double>& t, std::vector<double>& err, double noise = 0.0) {
-  t.clear(), err.clear();
-  for (int k = 0; k <= 40; ++k) {
-    t.push_back(std::pow(10.0, k / 10.0));
-    err.push_back(c * std::pow(t.back(), p) * (1.0 + noise * std::sin(3.0 * k)));
-  }
-}
-
-TEST(HorizonFit, RecoversTheExponentOfAPowerLaw) {
-  std::vector<double> t, err;
-  for (const double p : {0.5, 1.0, 2.0}) {
-    power_law(3e-9, p, t, err);
-    const GrowthFit f = fit_growth(t, err, 100.0, 1e4, 1e-15);
-    EXPECT_NEAR(f.p, p, 1e-9) << p;
-    EXPECT_NEAR(f.log10_c, std::log10(3e-9), 1e-8);
-    EXPECT_NEAR(f.p_early, p, 1e-9);
-    EXPECT_NEAR(f.p_late, p, 1e-9);
-    EXPECT_LT(f.ci95, 1e-6);
-    EXPECT_EQ(f.points, 21);  // 10^2 .. 10^4 at 10 a decade, both ends in
-    EXPECT_FALSE(f.at_rounding);
-    EXPECT_TRUE(f.why_none.empty());
-  }
-  // 20 % wobble: the interval is wider and still holds p
-  power_law(1e-6, 1.0, t, err, 0.2);
-  const GrowthFit noisy = fit_growth(t, err, 100.0, 1e4, 0.0);
-  EXPECT_GT(noisy.ci95, 1e-3);
-  EXPECT_LT(std::abs(noisy.p - 1.0), noisy.ci95);
-}
-
-TEST(HorizonFit, FitsOnlyItsWindowAndSaysWhyNot) {
-  // bounded up to t = 100, quadratic after: the window [100, 10^4] sees t^2
-  std::vector<double> t, err;
-  power_law(1.0, 0.0, t, err);
-  for (std::size_t i = 0; i < t.size(); ++i) err[i] = t[i] <= 100.0 ? 1e-8 : 1e-8 * std::pow(t[i] / 100.0, 2.0);
-  EXPECT_NEAR(fit_growth(t, err, 100.0, 1e4, 0.0).p, 2.0, 1e-9);
-  EXPECT_NEAR(fit_growth(t, err, 1.0, 100.0, 0.0).p, 0.0, 1e-9);
-  // the whole range mixes both: neither, and the halves say so
-  const GrowthFit mixed = fit_growth(t, err, 1.0, 1e4, 0.0);
-  EXPECT_NEAR(mixed.p_early, 0.0, 1e-9);
-  EXPECT_NEAR(mixed.p_late, 2.0, 1e-9);
-
-  const GrowthFit few = fit_growth(t, err, 1e3, 1.5e3, 0.0);  // 1000 and 1259 only
-  EXPECT_TRUE(std::isnan(few.p));
-  EXPECT_EQ(few.points, 2);
-  EXPECT_EQ(few.why_none, "only 2 samples with a value > 0 in the window (at least 4)");
-  // zeros are no growth: at rounding, no fit
-  const GrowthFit zeros = fit_growth(t, std::vector<double>(t.size(), 0.0), 100.0, 1e4, 1e-15);
-  EXPECT_TRUE(std::isnan(zeros.p));
-  EXPECT_TRUE(zeros.at_rounding);
-  EXPECT_EQ(zeros.largest, 0.0);
-}
 
 TEST(HorizonFit, SampleStepsAreLogSpacedWholeSteps) {
   const std::vector<long> n = horizon_sample_steps(1000, 4);
@@ -108,12 +57,15 @@ TEST(Horizon, FlatRk4DefectGrowsWhileRkmk4StaysOnTheGroup) {
     EXPECT_DOUBLE_EQ(r->t.back(), 20000 * spec.h);
   }
   // the flat method's defect: a steady drift, far above rounding
+  // (at 20000 steps its per-decade slopes still move: 1.16, 0.90, 0.99, undecided)
+  EXPECT_NE(flat.defect_fit.growth_class, GrowthClass::rounding) << flat.defect_fit.reason;
   EXPECT_GT(flat.defect_fit.p, 0.8);
   EXPECT_LT(flat.defect_fit.p, 1.2);
   EXPECT_FALSE(flat.defect_fit.at_rounding);
   EXPECT_GT(flat.defect_fit.largest, 1e-6);
   // the Lie method's: rounding only
   EXPECT_TRUE(lie.defect_fit.at_rounding);
+  EXPECT_EQ(lie.defect_fit.growth_class, GrowthClass::rounding);
   EXPECT_LT(lie.defect_fit.largest, 1e-12);
   // its energy error is smaller than the flat one's, whose R leaves SO(3)
   EXPECT_LT(lie.energy_error.back(), flat.energy_error.back());
@@ -121,13 +73,23 @@ TEST(Horizon, FlatRk4DefectGrowsWhileRkmk4StaysOnTheGroup) {
 
 TEST(Horizon, TheSeriesIsTheEnvelopeOverEachWindowNotARunningMaximum) {
   // every step measured (dense_outputs = steps): sample k holds the largest
-  // error over the steps after sample k - 1 up to its own
+  // error over the steps after sample k - 1 up to its own; the grid of
+  // window_outputs states in each window, as long as the windows, alone
+  // measures every step too (the uniform grid a single state)
   const Problem problem = make_problem(load_scene("chaplygin-bumpy-long"));
   HorizonSpec spec = small_study(4000);
   spec.dense_outputs = spec.steps;
   const Integrator& rk4 = find_integrator("rk4");
   const HorizonRecord r = horizon_run(problem, rk4, spec);
   ASSERT_EQ(r.status, Status::ok) << r.message;
+  HorizonSpec windows = spec;
+  windows.dense_outputs = 1;
+  windows.window_outputs = spec.steps;
+  const HorizonRecord w = horizon_run(problem, rk4, windows);
+  EXPECT_EQ(w.energy_error, r.energy_error);
+  EXPECT_EQ(w.rotation_defect, r.rotation_defect);
+  // the defaults: 20000 states in all, and at least 64 in each window
+  EXPECT_EQ(preset("default").horizon.window_outputs, 64);
   RunOptions every;
   every.t_end = r.t_end;
   every.h = spec.h;
@@ -173,8 +135,9 @@ TEST(Horizon, EachInvariantOfTheSceneIsRecordedLikeTheEnergy) {
   const std::vector<long> samples = horizon_sample_steps(spec.steps, spec.samples_per_decade);
   for (const InvariantSeries& s : r.invariants) {
     ASSERT_EQ(s.error.size(), samples.size());
-    EXPECT_TRUE(std::isfinite(s.fit.p)) << s.name << ": " << s.fit.why_none;
-    EXPECT_EQ(s.fit.asymptotic, std::abs(s.fit.p_late - s.fit.p_early) <= spec.asymptotic_spread);
+    EXPECT_TRUE(std::isfinite(s.fit.p)) << s.name << ": " << s.fit.reason;
+    EXPECT_NE(s.fit.growth_class, GrowthClass::none) << s.name;
+    EXPECT_FALSE(s.fit.reason.empty()) << s.name;
     EXPECT_DOUBLE_EQ(s.fit.rounding_level, rounding_level(spec.steps, 1.0));
     // rk4 at h = 1/128 misses them by far more than rounding
     EXPECT_FALSE(s.fit.at_rounding) << s.name;
@@ -195,7 +158,8 @@ TEST(Horizon, EachInvariantOfTheSceneIsRecordedLikeTheEnergy) {
   EXPECT_EQ(inv[1].at("name"), "routh-paraboloid.J2");
   EXPECT_EQ(inv[1].at("error").size(), runs[0].at("t").size());
   EXPECT_DOUBLE_EQ(inv[1].at("fit").at("p").get<double>(), r.invariants[1].fit.p);
-  for (const char* key : {"p_early", "p_late", "asymptotic", "at_rounding", "rounding_level", "why_none"})
+  for (const char* key : {"class", "reason", "decades", "p_earlier", "ci95_earlier", "p_last", "ci95_last",
+                          "at_rounding", "rounding_level"})
     EXPECT_TRUE(inv[0].at("fit").contains(key)) << key;
   EXPECT_TRUE(runs[1].at("invariants").empty());
 }
@@ -216,25 +180,54 @@ TEST(Horizon, TheChaplyginIntegralsShowRLeavingTheGroup) {
   EXPECT_GT(flat.invariants[0].fit.p, 0.8);
   EXPECT_TRUE(lie.invariants[0].fit.at_rounding) << lie.invariants[0].fit.largest;
   EXPECT_TRUE(lie.invariants[1].fit.at_rounding) << lie.invariants[1].fit.largest;
+  // both kinematic (docs/model.md, "Which integrals show structure"), and so
+  // recorded; the energy at the nearest rotation beside the flat one: rk4's
+  // flat H hides R's drift, rkmk4's two agree
+  for (const InvariantSeries& s : flat.invariants) EXPECT_EQ(s.kind, IntegralKind::kinematic) << s.name;
+  ASSERT_EQ(flat.energy_error_on_group.size(), flat.energy_error.size());
+  EXPECT_GT(flat.energy_on_group_fit.largest, 100.0 * flat.energy_fit.largest);
+  for (std::size_t k = 0; k < lie.energy_error.size(); ++k)
+    EXPECT_NEAR(lie.energy_error_on_group[k], lie.energy_error[k], 1e-14) << "sample " << k;
+  HorizonResults results;
+  results.runs = {flat, lie};
+  const nlohmann::json runs = horizon_json(results)["runs"];
+  EXPECT_EQ(runs[0].at("invariants")[0].at("kind"), "kinematic");
+  EXPECT_EQ(runs[0].at("energy_error_on_group").size(), runs[0].at("t").size());
+  EXPECT_DOUBLE_EQ(runs[0].at("fit").at("energy_error_on_group").at("largest").get<double>(),
+                   flat.energy_on_group_fit.largest);
+  EXPECT_TRUE(runs[0].at("same_as").contains("energy_error_on_group"));
+  EXPECT_TRUE(runs[0].at("rhs_equivalents").is_number());
 }
 
-TEST(Horizon, TheFitSaysWhetherItsHalvesAgree) {
-  // t^0.3 up to t = 1000, t^1 after: over [100, 10^4] the halves differ
-  std::vector<double> t, err;
-  power_law(1.0, 0.0, t, err);
-  for (std::size_t i = 0; i < t.size(); ++i)
-    err[i] = t[i] <= 1000.0 ? std::pow(t[i], 0.3) : std::pow(1000.0, 0.3) * t[i] / 1000.0;
-  const GrowthFit f = fit_growth(t, err, 100.0, 1e4, 0.0);
-  EXPECT_NEAR(f.p_early, 0.3, 1e-9);
-  EXPECT_NEAR(f.p_late, 1.0, 1e-9);
-  EXPECT_FALSE(f.asymptotic);  // fit_growth does not judge: horizon_run sets it
+TEST(Horizon, EachSeriesIsClassedWithTheStudysRules) {
+  // the record's fits are classify_growth of its series with the spec's
+  // window and spread, and the report carries each class, its reason and
+  // its per-decade slopes
   const Problem problem = make_problem(load_scene("bumpy-long"));
   HorizonSpec spec = small_study(20000);
   const HorizonRecord r = horizon_run(problem, find_integrator("rkmk4"), spec);
-  for (const GrowthFit* g : {&r.energy_fit, &r.defect_fit})
-    EXPECT_EQ(g->asymptotic, std::abs(g->p_late - g->p_early) <= spec.asymptotic_spread);
-  spec.asymptotic_spread = 10.0;
-  EXPECT_TRUE(horizon_run(problem, find_integrator("rkmk4"), spec).energy_fit.asymptotic);
+  ASSERT_EQ(r.status, Status::ok) << r.message;
+  GrowthRules rules;
+  rules.decades = spec.fit_decades;
+  rules.spread = spec.asymptotic_spread;
+  const GrowthFit energy = classify_growth(r.t, r.energy_error, rounding_level(spec.steps, r.energy_scale), rules);
+  EXPECT_EQ(r.energy_fit.growth_class, energy.growth_class);
+  EXPECT_EQ(r.energy_fit.reason, energy.reason);
+  EXPECT_DOUBLE_EQ(r.energy_fit.t_from, r.t_end / 1000.0);  // three decades
+  ASSERT_EQ(r.energy_fit.decades.size(), 4u);               // 20000 steps: 4 whole decades of t
+  HorizonResults results;
+  results.runs = {r};
+  const nlohmann::json fit = horizon_json(results)["runs"][0].at("fit").at("energy_error");
+  EXPECT_EQ(fit.at("class").is_null(), energy.growth_class == GrowthClass::none);
+  EXPECT_EQ(fit.at("reason"), energy.reason);
+  ASSERT_EQ(fit.at("decades").size(), 4u);
+  EXPECT_DOUBLE_EQ(fit.at("decades")[3].at("p").get<double>(), energy.decades[3].p);
+  EXPECT_DOUBLE_EQ(fit.at("decades")[3].at("t_to").get<double>(), r.t_end);
+  // a spread no slope set can pass: nothing above rounding is decided
+  spec.asymptotic_spread = -1.0;
+  const HorizonRecord strict = horizon_run(problem, find_integrator("rkmk4"), spec);
+  EXPECT_EQ(strict.energy_fit.growth_class, GrowthClass::undecided);
+  EXPECT_NE(strict.energy_fit.reason.find("drift"), std::string::npos) << strict.energy_fit.reason;
 }
 
 TEST(Horizon, SeriesTheSameByConstructionAreMarkedOnce) {
@@ -295,14 +288,23 @@ TEST(Horizon, AFailingMethodIsARecordWithoutAFit) {
   ASSERT_FALSE(r.t.empty());
   EXPECT_LE(r.t.back(), r.stop_time);
   EXPECT_TRUE(std::isnan(r.energy_fit.p));
-  EXPECT_EQ(r.defect_fit.why_none.rfind("the run stopped at t = ", 0), 0u) << r.defect_fit.why_none;
+  EXPECT_EQ(r.energy_fit.growth_class, GrowthClass::none);
+  EXPECT_EQ(r.defect_fit.reason.rfind("the run stopped at t = ", 0), 0u) << r.defect_fit.reason;
+  // a stopped run is not run again for a further decade
+  HorizonSpec more = small_study(100000);
+  more.steps_max = 1'000'000;
+  const HorizonRecord d = horizon_decades(problem, find_integrator("euler"), more);
+  EXPECT_NE(d.status, Status::ok);
+  EXPECT_EQ(d.steps, 100000);
+  EXPECT_TRUE(d.earlier.empty());
+  EXPECT_TRUE(d.budget_reason.empty());
 }
 
 TEST(Horizon, BadOptionsAreRefusedWithTheirNames) {
   EXPECT_EQ(parse_horizon_steps("1e5"), 100000);
   EXPECT_EQ(parse_horizon_steps("250000"), 250000);
   EXPECT_EQ(parse_horizon_steps("12.5e3"), 12500);  // a whole number, however written
-  for (const char* bad : {"12.5", "1.5e3x", "abc", "100", "2e8", "", "1e5x"}) {
+  for (const char* bad : {"12.5", "1.5e3x", "abc", "100", "2e8", "", "1e5x", " 1e5", "+1e5", "0x3E8", "-1e5"}) {
     try {
       parse_horizon_steps(bad);
       ADD_FAILURE() << bad;
@@ -312,7 +314,42 @@ TEST(Horizon, BadOptionsAreRefusedWithTheirNames) {
                                  std::string(bad) + "'");
     }
   }
-  HorizonSpec s = small_study(1000);
+  // the budget's options
+  EXPECT_EQ(parse_horizon_steps("1e7", "horizon-steps-max"), 10'000'000);
+  try {
+    parse_horizon_steps("1e9", "horizon-steps-max");
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "horizon-steps-max");
+  }
+  EXPECT_EQ(parse_horizon_cpu_max("600"), 600.0);
+  EXPECT_EQ(parse_horizon_cpu_max("2.5"), 2.5);
+  EXPECT_EQ(parse_horizon_cpu_max("1e-9"), 1e-9);
+  for (const char* bad : {"0", "-1", "inf", "nan", "", "10s", "1e400", " 5", "+5", "0x10"}) {
+    try {
+      parse_horizon_cpu_max(bad);
+      ADD_FAILURE() << bad;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), "horizon-cpu-max");
+      EXPECT_EQ(e.message(), "expected seconds, a finite number > 0 (e.g. 600), got '" + std::string(bad) + "'");
+    }
+  }
+  HorizonSpec s = small_study(10000);
+  s.steps_max = 5000;  // below the steps
+  try {
+    check_horizon(s);
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(),
+                 "'horizon-steps-max': expected the most steps from --horizon-steps (10000) to 100000000, got 5000");
+  }
+  s.steps_max = 0;
+  s.cpu_max_s = 0.0;
+  EXPECT_THROW(check_horizon(s), InputError);
+  s.cpu_max_s = 1.0;
+  s.fit_decades = 2;  // a class needs three
+  EXPECT_THROW(check_horizon(s), InputError);
+  s = small_study(1000);
   s.integrators = {"rk4", "rkmk-dp54-adaptive"};
   try {
     check_horizon(s);
@@ -474,6 +511,99 @@ TEST(HorizonCli, BadOptionsExitWithTwo) {
   EXPECT_TRUE(preset("default").horizon.enabled);
   EXPECT_EQ(preset("default").horizon.steps, 1'000'000);
   EXPECT_EQ(preset("full").horizon.steps, 10'000'000);
+  // no further decade unless asked for (issue 55: the default preset's cost)
+  EXPECT_EQ(preset("default").horizon.steps_max, 0);
+  EXPECT_EQ(preset("full").horizon.steps_max, 0);
+  EXPECT_EQ(preset("default").horizon.cpu_max_s, 600.0);
+  o = run_rollbench(base + "--horizon-steps 1e4 --horizon-steps-max 1e3" + out);
+  EXPECT_EQ(o.code, 2);
+  EXPECT_EQ(o.err,
+            "rollbench: 'horizon-steps-max': expected the most steps from --horizon-steps (10000) to 100000000, got "
+            "1000\n");
+  o = run_rollbench(base + "--horizon-cpu-max 0" + out);
+  EXPECT_EQ(o.code, 2);
+  EXPECT_EQ(o.err, "rollbench: 'horizon-cpu-max': expected seconds, a finite number > 0 (e.g. 600), got '0'\n");
+}
+
+// The study runs decade by decade: a run whose class is undecided runs
+// again at 10 times the steps while the budget allows, the record is the
+// last run with the earlier ones listed, and the report says when the
+// budget stopped an undecided class. rk4 on the bumpy bowl is undecided at
+// 10^3 steps (its first decade of steps is the window's); on the plane its
+// energy is at rounding and its defect linear at once.
+TEST(HorizonCli, UndecidedRunsGoOnDecadeByDecadeWithinTheBudget) {
+  const fs::path file = testing::cli_temp_file("horizon-decades.json");
+  const std::string common =
+      "run --scenes plane --integrators rk4 --h 0.25 --repeats 0 --horizon-steps 1000 --horizon-scenes "
+      "bumpy-long,plane --horizon-integrators rk4 --out " +
+      file.string();
+  testing::CliOutcome o = run_rollbench(common + " --horizon-steps-max 1e5");
+  ASSERT_EQ(o.code, 0) << o.err;
+  nlohmann::json j = nlohmann::json::parse(slurp(file));
+  EXPECT_EQ(j.at("options").at("horizon").at("steps_max"), 100000);
+  nlohmann::json runs = j.at("horizon").at("runs");
+  ASSERT_EQ(runs.size(), 4u);  // two study runs, two price runs at 4 h (16 does not divide 1000)
+  const nlohmann::json& bowl = runs[0];
+  ASSERT_EQ(bowl.at("scene"), "bumpy-long");
+  EXPECT_EQ(bowl.at("study_steps"), 1000);
+  const nlohmann::json& earlier = bowl.at("earlier_runs");
+  ASSERT_FALSE(earlier.empty()) << "rk4 on bumpy-long is undecided at 1000 steps";
+  long steps = 1000;
+  for (const nlohmann::json& e : earlier) {
+    EXPECT_EQ(e.at("steps"), steps);
+    EXPECT_EQ(e.at("status"), "ok");
+    EXPECT_DOUBLE_EQ(e.at("t_end").get<double>(), steps / 128.0);
+    EXPECT_TRUE(e.at("largest").at("energy_error").is_number());
+    const nlohmann::json& c = e.at("class");
+    EXPECT_TRUE(c.at("energy_error") == "undecided" || c.at("energy_error_on_group") == "undecided" ||
+                c.at("rotation_defect") == "undecided")
+        << c;
+    steps *= 10;
+  }
+  EXPECT_EQ(bowl.at("steps_planned"), steps);
+  EXPECT_LE(steps, 100000);
+  EXPECT_DOUBLE_EQ(bowl.at("t_end").get<double>(), steps / 128.0);
+  bool undecided = false;
+  for (const char* key : {"energy_error", "energy_error_on_group", "rotation_defect"})
+    undecided = undecided || bowl.at("fit").at(key).at("class") == "undecided";
+  EXPECT_EQ(bowl.at("budget_ran_out"), undecided);
+  if (undecided) {
+    EXPECT_EQ(steps, 100000);
+    EXPECT_EQ(bowl.at("budget_reason"),
+              "the next decade, 1000000 steps, is past the study's most, 100000 (--horizon-steps-max)");
+  }
+  EXPECT_NE(o.err.find("horizon: rk4 on bumpy-long: ok (1000 steps undecided, "), std::string::npos) << o.err;
+  // decided at once: one run
+  const nlohmann::json& plane = runs[1];
+  EXPECT_EQ(plane.at("fit").at("energy_error_on_group").at("class"), "rounding");
+  EXPECT_EQ(plane.at("fit").at("rotation_defect").at("class"), "linear");
+  EXPECT_TRUE(plane.at("earlier_runs").empty());
+  EXPECT_EQ(plane.at("steps_planned"), 1000);
+  EXPECT_EQ(plane.at("budget_ran_out"), false);
+  EXPECT_TRUE(plane.at("budget_reason").is_null());
+  // a price run is never run again: one run of steps / k
+  EXPECT_EQ(runs[2].at("coarsening"), 4);
+  EXPECT_EQ(runs[2].at("steps_planned"), 250);
+  EXPECT_EQ(runs[2].at("study_steps"), 250);
+  EXPECT_TRUE(runs[2].at("earlier_runs").empty());
+
+  // a CPU budget no decade fits: the first run only, and why
+  o = run_rollbench(common + " --horizon-steps-max 1e5 --horizon-cpu-max 1e-9");
+  ASSERT_EQ(o.code, 0) << o.err;
+  runs = nlohmann::json::parse(slurp(file)).at("horizon").at("runs");
+  EXPECT_TRUE(runs[0].at("earlier_runs").empty());
+  EXPECT_EQ(runs[0].at("steps_planned"), 1000);
+  EXPECT_EQ(runs[0].at("budget_ran_out"), true);
+  const std::string why = runs[0].at("budget_reason");
+  EXPECT_EQ(why.rfind("the next decade, 10000 steps, would take about ", 0), 0u) << why;
+  EXPECT_NE(why.find("s of CPU (10 times this run's), past 1e-09 s (--horizon-cpu-max)"), std::string::npos) << why;
+  // without --horizon-steps-max: no further decade, and the report says so
+  o = run_rollbench(common);
+  ASSERT_EQ(o.code, 0) << o.err;
+  runs = nlohmann::json::parse(slurp(file)).at("horizon").at("runs");
+  EXPECT_EQ(runs[0].at("steps_planned"), 1000);
+  EXPECT_EQ(runs[0].at("budget_reason"),
+            "the next decade, 10000 steps, is past the study's most, 1000 (--horizon-steps-max)");
 }
 
 }  // namespace

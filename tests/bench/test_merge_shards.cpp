@@ -163,5 +163,112 @@ TEST(MergeShards, TheMergedReportListsTheErrorComponents) {
   EXPECT_EQ(merged.at("error_components").size(), kErrorComponentCount);
 }
 
+// A run entry that merges (the fits read it), at index.
+json run_at(const json& index) {
+  return {{"index", index},
+          {"scene", "plane"},
+          {"integrator", "rk4"},
+          {"adaptive", false},
+          {"declared_order", 4},
+          {"declared_rotation_order", 4},
+          {"h", 0.5},
+          {"rtol", nullptr},
+          {"stop_time", 1.0},
+          {"status", "ok"},
+          {"steps", 2},
+          {"final",
+           {{"t", 1.0},
+            {"contact", {0.0, 0.0}},
+            {"centre", {0.0, 0.0, 0.1}},
+            {"omega", {0.0, 0.0, 0.0}},
+            {"R", {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}}}},
+          {"error",
+           {{"contact", 1e-3},
+            {"centre", 1e-3},
+            {"omega", 1e-3},
+            {"rotation", 1e-4},
+            {"worst", 1e-3},
+            {"below_floor", json::array()}}}};
+}
+
+json shard_with_runs(long index, long count, const std::vector<json>& indices) {
+  json shard = empty_shard(index, count);
+  for (const json& i : indices) shard["runs"].push_back(run_at(i));
+  return shard;
+}
+
+std::string merge_error(const std::vector<json>& shards, const std::vector<std::string>& files) {
+  try {
+    merge_reports(shards, files);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(merged)";
+}
+
+// Each run index once across the shards, from 0 to the number of runs - 1
+// (issue 57: two shards with the same runs merged into runs 0,0,2,2...; -5
+// and 2^64 - 1 were taken): what is held twice names both files, whatever
+// the two say, and an index out of range names its file and place.
+TEST(MergeShards, EachRunIndexOnceAndInRange) {
+  EXPECT_EQ(merge_error({shard_with_runs(0, 2, {0, 2}), shard_with_runs(1, 2, {1, 3})}, {"a.json", "b.json"}),
+            "(merged)");
+  json contradicting = shard_with_runs(1, 2, {0, 2});
+  contradicting["runs"][0]["error"]["worst"] = 123;
+  EXPECT_EQ(merge_error({shard_with_runs(0, 2, {0, 2}), contradicting}, {"a.json", "b.json"}),
+            "'reports': run index 0 is in both 'a.json' (runs[0]) and 'b.json' (runs[0]): each is in one shard only");
+  EXPECT_EQ(merge_error({shard_with_runs(0, 2, {0, 2}), shard_with_runs(1, 2, {0, 2})}, {"a.json", "b.json"}),
+            "'reports': run index 0 is in both 'a.json' (runs[0]) and 'b.json' (runs[0]): each is in one shard only");
+  EXPECT_EQ(merge_error({shard_with_runs(0, 2, {0, 1}), shard_with_runs(1, 2, {2, 1})}, {"a.json", "b.json"}),
+            "'reports': run index 1 is in both 'a.json' (runs[1]) and 'b.json' (runs[1]): each is in one shard only");
+  EXPECT_EQ(merge_error({shard_with_runs(0, 2, {0}), shard_with_runs(1, 2, {-5})}, {"a.json", "b.json"}),
+            "'reports': the report 'b.json': runs[0].index is -5, not a whole number from 0 to 1 (the shards hold 2 "
+            "runs, each index once)");
+  EXPECT_EQ(merge_error({shard_with_runs(0, 2, {0}), shard_with_runs(1, 2, {json(18446744073709551615ull)})},
+                        {"a.json", "b.json"}),
+            "'reports': the report 'b.json': runs[0].index is 18446744073709551615, not a whole number from 0 to 1 "
+            "(the shards hold 2 runs, each index once)");
+  // a gap is an index beyond the runs the shards hold
+  EXPECT_EQ(merge_error({shard_with_runs(0, 2, {0}), shard_with_runs(1, 2, {3})}, {"a.json", "b.json"}),
+            "'reports': the report 'b.json': runs[0].index is 3, not a whole number from 0 to 1 (the shards hold 2 "
+            "runs, each index once)");
+}
+
+// The stability study's records (drift, then the largest-stable-h searches,
+// one index space) and the horizon runs are checked the same way.
+TEST(MergeShards, EachStabilityAndHorizonIndexOnce) {
+  json a = empty_shard(0, 2), b = empty_shard(1, 2);
+  a["stability"]["drift"] = {{{"index", 0}}};
+  b["stability"]["largest_stable_h"] = {{{"index", 1}}};
+  a["horizon"] = {{"runs", {{{"index", 0}}}}};
+  b["horizon"] = {{"runs", {{{"index", 1}}}}};
+  EXPECT_EQ(merge_error({a, b}, {"a.json", "b.json"}), "(merged)");
+  json twice = b;
+  twice["stability"]["largest_stable_h"][0]["index"] = 0;
+  EXPECT_EQ(merge_error({a, twice}, {"a.json", "b.json"}),
+            "'reports': stability record index 0 is in both 'a.json' (stability.drift[0]) and 'b.json' "
+            "(stability.largest_stable_h[0]): each is in one shard only");
+  json fraction = b;
+  fraction["horizon"]["runs"][0]["index"] = 0.5;
+  EXPECT_EQ(merge_error({a, fraction}, {"a.json", "b.json"}),
+            "'reports': the report 'b.json': horizon.runs[0].index is 0.5, not a whole number from 0 to 1 (the "
+            "shards hold 2 horizon runs, each index once)");
+}
+
+// One name, one scene: shards whose references of a scene disagree on what
+// the scene is were made of two scenes with one name.
+TEST(MergeShards, TwoScenesOfOneNameAreRefused) {
+  const json reference = {{"scene", "plane"},   {"error", 1e-12},        {"omega_scale", 1.0}, {"t_end", 1.0},
+                          {"inertia", nullptr}, {"r_feeds_back", false}, {"kind", "exact"},    {"method", "exact"}};
+  json a = empty_shard(0, 2), b = empty_shard(1, 2);
+  a["references"] = {reference};
+  b["references"] = {reference};
+  EXPECT_EQ(merge_error({a, b}, {"a.json", "b.json"}), "(merged)");
+  b["references"][0]["t_end"] = 2.0;
+  EXPECT_EQ(merge_error({a, b}, {"a.json", "b.json"}),
+            "'reports': scene 'plane' differs between 'a.json' and 'b.json' (its reference's t_end: 1.0 and 2.0): "
+            "two scenes with one name");
+}
+
 }  // namespace
 }  // namespace rb

@@ -55,6 +55,13 @@ std::vector<const FitRun*> pointers(const std::vector<FitRun>& runs) {
   return out;
 }
 
+TEST(OrderLadderRules, TheRoundingIsMeasuredAtTheReferencesFinerStep) {
+  // the floors are the disagreement of the reference and its check, which
+  // takes half the reference's step: there the rounding was measured
+  EXPECT_DOUBLE_EQ(kReferenceRoundingStep, ReferenceSettings{}.h / 2);
+  EXPECT_DOUBLE_EQ(OrderScale{}.rounding_step, kReferenceRoundingStep);
+}
+
 TEST(OrderLadderRules, EachComponentIsFittedAboveItsOwnFloor) {
   // an order-8 method, 10 h^8 at every component, on a scene whose omega
   // floor is 1e-12 (the largest, the report's "error") while the contact

@@ -115,27 +115,39 @@ TEST(OutputFile, ALinkToARegularFileIsReplacedNotFollowed) {
   EXPECT_EQ(read(link), "new");
 }
 
-// issue 32, item 1: the file is made relative to its folder's descriptor,
-// opened without following a link. A folder that is a symlink is refused;
-// "." and ".." are no file names; a folder swapped for a link to another
-// after the open is never written through: the file lands in the folder
-// that was opened.
+// issue 32, item 1, and issue 57: the file is made relative to its
+// folder's descriptor, reached by the path rule (problems/safe_path.hpp): a
+// folder that is a link of this user's is followed, one of another user's
+// is refused naming it; "." and ".." are no file names; a folder swapped for
+// a link to another after the open is never written through: the file lands
+// in the folder that was opened.
 TEST(OutputFile, TheFolderIsOpenedOnceAndNeverFollowed) {
   Folder folder;
-  const fs::path real = folder.path / "real", link = folder.path / "link";
+  const fs::path real = folder.path / "real", link = folder.path / "link", foreign = folder.path / "foreign";
   fs::create_directories(real);
   fs::create_symlink(real, link);
-  for (const std::string& bad : {(link / "x.csv").string(), (real / "..").string(), (real / ".").string()}) {
+  fs::create_symlink(real, foreign);
+  const bool foreign_made = ::geteuid() == 0 && ::lchown(foreign.c_str(), 65534, 65534) == 0;
+  std::vector<std::string> bad_paths = {(real / "..").string(), (real / ".").string()};
+  if (foreign_made) bad_paths.push_back((foreign / "x.csv").string());
+  for (const std::string& bad : bad_paths) {
     try {
       OutputFile file(bad, "out");
       ADD_FAILURE() << bad << " was taken";
     } catch (const InputError& e) {
-      const std::string why =
-          bad.starts_with(link.string()) ? " (its folder '" + link.string() + "' is a symbolic link)" : "";
+      const std::string why = bad.starts_with(foreign.string())
+                                  ? " ('" + foreign.string() +
+                                        "' is a symbolic link owned by uid 65534 in a folder owned by uid 0; "
+                                        "not followed)"
+                                  : "";
       EXPECT_EQ(std::string(e.what()), "'out': cannot open '" + bad + "' for writing" + why);
     }
   }
   EXPECT_TRUE(fs::is_empty(real));
+  write_output_file((link / "mine.csv").string(), "mine", "out");  // this user's link: followed
+  EXPECT_EQ(read(real / "mine.csv"), "mine");
+  EXPECT_TRUE(fs::is_symlink(link));
+  fs::remove(real / "mine.csv");
 
   const fs::path moved = folder.path / "moved", elsewhere = folder.path / "elsewhere";
   fs::create_directories(elsewhere);

@@ -67,7 +67,8 @@ TEST(ScoreCli, ABadCsvExitsWithTwoNamingTheLineAndTheColumn) {
   EXPECT_EQ(dt_out.err, "rollbench: 'dt-out': the output spacing must be a finite number > 0\n");
   const testing::CliOutcome missing = run_rollbench("score plane /nonexistent/t.csv");
   EXPECT_EQ(missing.code, 2);
-  EXPECT_EQ(missing.err, "rollbench: 'trajectory': cannot open '/nonexistent/t.csv' for reading\n");
+  EXPECT_EQ(missing.err,
+            "rollbench: 'trajectory': cannot read the trajectory '/nonexistent/t.csv' (No such file or directory)\n");
 }
 
 }  // namespace

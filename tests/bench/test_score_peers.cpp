@@ -124,7 +124,8 @@ TEST(ScorePeers, ATrajectoryOutsideThePeerFilesFolderOrNotARegularFileIsRefused)
   EXPECT_NE(refusal("link-out.csv").find("'link-out.csv' leads out of the peer file's folder"), std::string::npos);
   EXPECT_NE(refusal("zero.csv").find("'zero.csv' leads out of the peer file's folder"), std::string::npos);
   EXPECT_NE(refusal("fifo.csv")
-                .find("the trajectory '" + fs::weakly_canonical(dir / "fifo.csv").string() + "' is not a regular file"),
+                .find("'" + fs::weakly_canonical(dir / "fifo.csv").string() +
+                      "' is a FIFO; inputs are read only from regular files"),
             std::string::npos);  // opened without blocking: a FIFO never hangs it
   fs::remove_all(dir);
   fs::remove(outside);

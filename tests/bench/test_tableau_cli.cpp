@@ -152,7 +152,8 @@ TEST(TableauCli, ABadFileExitsWithTwoNamingTheFileKeyAndTree) {
   r = robustness::rollbench("trajectory plane --tableau /nonexistent.json --integrator rk4 --h 0.1 --out " +
                             scratch("x.csv").string());
   EXPECT_EQ(r.code, 2);
-  EXPECT_EQ(r.err, "rollbench: 'tableau': cannot read the tableau file '/nonexistent.json'\n");
+  EXPECT_EQ(r.err,
+            "rollbench: 'tableau': cannot read the tableau file '/nonexistent.json' (No such file or directory)\n");
 }
 
 }  // namespace

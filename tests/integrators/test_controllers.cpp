@@ -107,9 +107,10 @@ TEST(Controllers, EachControllerDrivesAnRkmkPairToTheTolerance) {
     const RunResult run = pair.integrate(valley(), o);
     ASSERT_EQ(run.status, Status::ok) << name << ": " << run.message;
     EXPECT_LT((run.final_state - reference.final_state).norm(), 1e-6) << name;
-    // every stage checked, and the start and the end; the first step's
+    // every stage checked, and the start and the end, and the paths of the
+    // steps that moved the contact point more than r/8; the first step's
     // guess (initial_step, 2 evaluations) is not a stage
-    EXPECT_EQ(run.cost.validity_checks, run.cost.rhs_evals - 2 + 2) << name;
+    EXPECT_EQ(run.cost.validity_checks, run.cost.rhs_evals - 2 + 2 + run.cost.path_checks) << name;
     if (std::string(name) == "pi") {
       EXPECT_EQ(run.cost.steps, by_default.cost.steps);
       EXPECT_EQ(run.final_state, by_default.final_state);

@@ -141,8 +141,25 @@ TEST(LagrangeDalembert, ReversibilityDefectIsAtRoundingAndCostIsCounted) {
     EXPECT_GE(r.cost.newton_iterations, 2 * 20);
     EXPECT_LE(r.cost.newton_iterations, 12 * 20);
     EXPECT_EQ(r.cost.newton_failures, 0);
-    std::printf("%s: reversibility %.2e (midpoint %.2e), newton iterations a step %.2f\n", scene, d.worst(),
-                rk2.worst(), static_cast<double>(r.cost.newton_iterations) / r.cost.steps);
+    // its cost in rhs-equivalents (docs/formats.md, rhs_equivalents): 1 rhs a
+    // step, plus the Jacobian's 5 columns, a geometry pass at the start, at
+    // the end and in every iteration after the first (whose residual the AD
+    // pass gave), and a 5 x 5 LU a step and a solve an iteration at 392
+    // operations to one
+    const long n = r.cost.newton_iterations;
+    EXPECT_EQ(r.cost.jacobian_columns, 5 * 20);
+    EXPECT_EQ(r.cost.model_passes, 2 * 20 + (n - 20));
+    EXPECT_EQ(r.cost.lu_decompositions, 20);
+    const double flops = 20 * (2.0 / 3.0 * 125.0) + n * 50.0;
+    EXPECT_NEAR(r.cost.linear_algebra_flops, flops, 1e-12 * flops);  // (summed in another order)
+    const double per_step = r.cost.rhs_equivalents() / 20.0;
+    const double expected = (20.0 + 5 * 20 + 2 * 20 + (n - 20) + flops / 392.0) / 20.0;
+    EXPECT_NEAR(per_step, expected, 1e-12 * expected);
+    EXPECT_GT(per_step, 6.0 * r.cost.rhs_evals / 20.0);  // far above its 1 rhs a step
+    std::printf(
+        "%s: reversibility %.2e (midpoint %.2e), newton iterations a step %.2f, rhs-equivalents a step "
+        "%.2f\n",
+        scene, d.worst(), rk2.worst(), static_cast<double>(n) / r.cost.steps, per_step);
   }
 }
 

@@ -246,7 +246,7 @@ TEST(TableauFile, AnUnreadableFileIsNamed) {
     load_tableau_file("/nonexistent/t.json");
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "'tableau': cannot read the tableau file '/nonexistent/t.json'");
+    EXPECT_STREQ(e.what(), "'tableau': cannot read the tableau file '/nonexistent/t.json' (No such file or directory)");
   }
 }
 

@@ -2,10 +2,12 @@
 the oct-file built with mkoctfile, ode45, ode23 and ode15s calling the problem
 library, `rollbench score --peers` turning the solves into report runs, and the
 analysis drawing them. CTest sets RB_PROBLEM_LIB and RB_ROLLBENCH to the build's."""
+import json
 import os
 import subprocess
 import tempfile
 import unittest
+from unittest import mock
 
 from analysis import report as rp
 from analysis.peers import octave_peer, problem_lib
@@ -96,6 +98,66 @@ class OctavePeerScored(unittest.TestCase):
             self.assertIn(f"{m[0]} (adaptive)", lines)
         self.assertEqual(palette.family("octave-ode45"), "octave")
         self.assertIn("octave", FAMILY_COLOURS)
+
+
+class OctavePeerRunsNothingPlanted(unittest.TestCase):
+    """One run of the command line from a working folder with code planted in it (solve_peers.m, .octaverc,
+    ode45.m, each of which would write a marker): Octave runs in a private folder, so none of it runs. And the
+    oct-file built under a $TMPDIR whose name holds a shell command: mkoctfile gets no text of it."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        base = cls.tmp.name
+        cls.markers = [os.path.join(base, f"MARKER-{name}") for name in ("solve_peers", "octaverc", "ode45")]
+        cls.planted = os.path.join(base, "planted")
+        os.mkdir(cls.planted)
+        plants = {"solve_peers.m": "function solve_peers(varargin)\n  fclose(fopen('{}', 'w'));\nend\n",
+                  ".octaverc": "fclose(fopen('{}', 'w'));\n",
+                  "ode45.m": "function varargout = ode45(varargin)\n  fclose(fopen('{}', 'w'));\nend\n"}
+        for (name, code), marker in zip(plants.items(), cls.markers):
+            with open(os.path.join(cls.planted, name), "w") as f:
+                f.write(code.format(marker))
+        # a scene file named relative to the caller's working folder: Octave, run elsewhere, gets its absolute path
+        with open(os.path.join(ROOT, "problems", "scenes", "valley-sideways.json")) as f:
+            scene = f.read()
+        with open(os.path.join(cls.planted, "my-scene.json"), "w") as f:
+            f.write(scene)
+        cls.out = os.path.join(base, "out")
+        cls.done = subprocess.run(["/usr/bin/python3", "-m", "analysis.peers.octave_peer", "--library",
+                                   problem_lib.DEFAULT_LIBRARY, "--scene", "my-scene.json", "--methods", "ode45",
+                                   "--tol", "1e-4", "--t-end", "0.5", "--repeats", "1", "--rhs-calls", "10",
+                                   "--out", cls.out], capture_output=True, text=True, cwd=cls.planted,
+                                  env=dict(os.environ, PYTHONPATH=ROOT))
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_the_peer_runs_and_writes_its_file(self):
+        self.assertEqual(self.done.returncode, 0, self.done.stderr)
+        with open(os.path.join(self.out, "peers.json")) as f:
+            (run,) = json.load(f)["runs"]
+        self.assertEqual((run["integrator"], run["status"], run["scene"]), ("octave-ode45", "ok", "my-scene.json"))
+
+    def test_code_planted_in_the_working_folder_never_runs(self):
+        self.assertEqual([m for m in self.markers if os.path.exists(m)], [])
+
+    def test_a_command_in_tmpdir_never_runs(self):
+        with tempfile.TemporaryDirectory() as base:
+            pwned = os.path.join(base, "PWNED")
+            # folders named so that a shell reading "$TMPDIR/..." runs `touch BASE/PWNED`
+            hostile = os.path.join(base, f"X;touch {pwned};Y")
+            os.makedirs(hostile)
+            with mock.patch.dict(os.environ, TMPDIR=hostile):
+                work = tempfile.mkdtemp(dir=hostile)  # as run_peers' private folder under this TMPDIR
+                try:
+                    built = octave_peer.build_oct_file(work)
+                except octave_peer.OctaveError as e:
+                    built = str(e)
+            self.assertFalse(os.path.exists(pwned))
+            self.assertEqual(built, os.path.join(work, "rb_problem.oct"))
+            self.assertTrue(os.path.isfile(built))
 
 
 class OctavePeerInput(unittest.TestCase):

@@ -133,5 +133,33 @@ class ScipyPeerScored(unittest.TestCase):
         self.assertIn("to t_end = 1", r.stderr)
 
 
+class ScipyPeerPaths(unittest.TestCase):
+    """Paths that are not UTF-8 (bytes as typed): a message and exit 2 where the peer file cannot hold one, a run
+    where it need not."""
+
+    def peer(self, *args, cwd=ROOT):
+        return subprocess.run([b"/usr/bin/python3", b"-m", b"analysis.peers.scipy_peer", b"--library",
+                               os.fsencode(problem_lib.DEFAULT_LIBRARY), b"--methods", b"RK45", b"--tol", b"1e-3",
+                               b"--t-end", b"0.5", b"--repeats", b"1", b"--rhs-calls", b"10", *args],
+                              capture_output=True, cwd=cwd)
+
+    def test_a_scene_path_that_is_not_utf8_is_refused_naming_it(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            scene = os.fsencode(tmp) + b"/\xff\x1b.json"
+            r = self.peer(b"--scene", scene, b"--out", os.fsencode(tmp))
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertEqual(r.stderr.decode(), f"scipy_peer: --scene '{tmp}/\\xff\\x1b.json' is not UTF-8; the peer "
+                                            "file records it as JSON text, so name it by a UTF-8 path\n")
+
+    def test_an_output_folder_that_is_not_utf8_is_written_and_shown_escaped(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.fsencode(tmp) + b"/\xff-out"
+            r = self.peer(b"--scene", b"plane", b"--out", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.assertEqual(r.stdout.decode(), f"peer file written to '{tmp}/\\xff-out/peers.json'\n")
+            self.assertTrue(os.path.isfile(out + b"/peers.json"))
+            self.assertEqual(os.listdir(out + b"/trajectories"), [b"plane-scipy-rk45-1e-03.csv"])
+
+
 if __name__ == "__main__":
     unittest.main()

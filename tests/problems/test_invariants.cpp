@@ -200,5 +200,65 @@ TEST(Invariants, ShippedScenesDeclareThem) {
   EXPECT_TRUE(read_shipped_scene("paraboloid-perturbed").invariants.empty());
 }
 
+// Which integrals show structure (docs/model.md): the loader exposes each
+// one's kind, and the kinematic ones are kept by methods with no structure
+// at all, while the dynamical ones are not.
+TEST(Invariants, KinematicIntegralsAreMarkedAndKeptByAnyMethod) {
+  struct Expect {
+    const char* scene;
+    std::vector<std::string> names;
+    std::vector<IntegralKind> kinds;
+  };
+  const IntegralKind dyn = IntegralKind::dynamical, kin = IntegralKind::kinematic;
+  for (const Expect& e : {Expect{"paraboloid", {"routh-paraboloid.J1", "routh-paraboloid.J2"}, {dyn, dyn}},
+                          Expect{"bowl-3d", {"routh-sphere.omega.N", "routh-sphere.J"}, {dyn, kin}},
+                          Expect{"chaplygin-plane", {"chaplygin-plane.K.K", "chaplygin-plane.K.N"}, {kin, kin}}}) {
+    SCOPED_TRACE(e.scene);
+    const Problem p = make_problem(load_scene(e.scene));
+    ASSERT_EQ(p.invariants().size(), 1u);
+    EXPECT_EQ(p.invariants()[0]->kinds(), e.kinds);
+    const InvariantMeter meter(p);
+    EXPECT_EQ(meter.names(), e.names);
+    EXPECT_EQ(meter.kinds(), e.kinds);
+  }
+  EXPECT_EQ(kind_name(IntegralKind::kinematic), "kinematic");
+  EXPECT_EQ(kind_name(IntegralKind::dynamical), "dynamical");
+
+  // the spherical bowl's J is identically (5/7) v_z / (m r^2), at any state,
+  // on the trajectory or not
+  const Problem bowl = make_problem(load_scene("bowl-3d"));
+  const BallParams& b = bowl.model().params();
+  for (const FlatState& start : {bowl.y0(), FlatState(bowl.y0() + 0.1 * FlatState::Ones())}) {
+    FlatState y = start;
+    y.segment<3>(kOffsetV) += Vec3(0.3, -0.7, 0.2);
+    double value[2], magnitude[2];
+    bowl.invariants()[0]->at(y, value, magnitude);
+    EXPECT_NEAR(value[1], 5.0 / 7.0 * y[kOffsetV + 2] / (b.mass * b.radius * b.radius), 1e-14 * magnitude[1]);
+  }
+  // so Euler keeps it to rounding with an energy error of order 1, and
+  // omega . N not: only the dynamical one tells the methods apart
+  // (one output: the end)
+  const auto fixed = [](double h, double t_end) {
+    RunOptions o;
+    o.h = h;
+    o.t_end = t_end;
+    return o;
+  };
+  const RunResult euler = find_integrator("euler").integrate(bowl, fixed(0.01, 5.0));
+  ASSERT_EQ(euler.status, Status::ok) << euler.message;
+  const std::vector<double> bowl_change = largest_change(*bowl.invariants()[0], bowl, euler);
+  EXPECT_LT(bowl_change[1], 1e-13);
+  EXPECT_GT(bowl_change[0], 1e-2);
+  EXPECT_GT(relative_energy_change(bowl, euler), 0.5);
+
+  // on the plane v's rate is 0 in F: a Lie-group method of order 1 keeps
+  // M . M and M . gamma to rounding with a large energy error
+  const Problem plane = make_problem(load_scene("chaplygin-plane"));
+  const RunResult exp_euler = find_integrator("exp-euler").integrate(plane, fixed(1.0 / 64, 3.0));
+  ASSERT_EQ(exp_euler.status, Status::ok) << exp_euler.message;
+  for (const double c : largest_change(*plane.invariants()[0], plane, exp_euler)) EXPECT_LT(c, 1e-13);
+  EXPECT_GT(relative_energy_change(plane, exp_euler), 1e-3);
+}
+
 }  // namespace
 }  // namespace rb

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "bench/lib/reference.hpp"
+#include "problems/input_file.hpp"
 #include "tests/cli_run.hpp"
 
 namespace rb {
@@ -139,6 +140,14 @@ TEST_F(CacheEntries, TheReferenceStatesItsOwnErrorPerComponent) {
     largest = std::max(largest, e);
   }
   EXPECT_DOUBLE_EQ(largest, ref.at("error").get<double>());
+}
+
+TEST_F(CacheEntries, AGibEntryIsRecomputedWithoutBeingRead) {
+  // e4d8eb6 read a 1 GiB sparse entry whole (1.07 GB, 18 s): its size is checked first, against its grid's
+  const std::size_t times = nlohmann::json::parse(slurp(entry)).at("made_from").at("times").size();
+  fs::resize_file(entry, kGiB);  // sparse: no disk spent
+  expect_refused("'" + entry.string() + "' is 1.07 GB; a cached reference is at most " +
+                 limit_in_words(reference_cache_input(times).max_bytes));
 }
 
 }  // namespace

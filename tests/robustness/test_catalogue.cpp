@@ -63,7 +63,7 @@ TEST(Catalogue, EveryCitedTestExistsInItsFile) {
 TEST(Catalogue, EveryRunStatusIsCatalogued) {
   for (const Status s :
        {Status::ok, Status::diverged, Status::lift_off, Status::curvature, Status::domain, Status::step_underflow,
-        Status::max_steps, Status::crashed, Status::timeout, Status::off_group, Status::error}) {
+        Status::max_steps, Status::crashed, Status::timeout, Status::off_group, Status::solver, Status::error}) {
     const std::string entry = "| `" + std::string(status_name(s)) + "` |";
     EXPECT_NE(catalogue().find(entry), std::string::npos) << "no catalogue row for the status " << status_name(s);
   }

@@ -86,9 +86,9 @@ class Reports(unittest.TestCase):
         self.base = {"schema": "rollbench.report/2", "created": "2026-12-06T18:59:01Z", "git": "abc",
                      "machine": {"load": [0.5, 0.4, 0.3]},
                      "error_components": [{"name": "contact", "label": "contact", "unit": "m"}],
-                     "runs": [dict(run, integrator="rk4", error=1.25e-7, drift=-0.0, steps=100,
-                                   wall_s={"median": 0.01, "samples": [0.01, 0.011]}),
-                              dict(run, integrator="rkmk4", error=float("nan"), steps=100,
+                     "runs": [dict(run, integrator="rk4", error={"contact": 1.25e-7}, drift={"energy": -0.0},
+                                   steps=100, wall_s={"median": 0.01, "samples": [0.01, 0.011]}),
+                              dict(run, integrator="rkmk4", error={"contact": None}, steps=100,
                                    wall_s={"median": 0.02, "samples": [0.02]})]}
 
     def compare(self, changed):
@@ -112,13 +112,14 @@ class Reports(unittest.TestCase):
 
     def test_a_value_moved_by_one_bit_is_named_by_its_path(self):
         b = self.changed()
-        b["runs"][0]["error"] = 1.2500000000000002e-7
-        b["runs"][0]["drift"] = 0.0
+        b["runs"][0]["error"]["contact"] = 1.2500000000000002e-7
+        b["runs"][0]["drift"]["energy"] = 0.0
         b["runs"][1]["steps"] = 100.0
         r = self.compare(b)
         self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
-        self.assertEqual(r.stdout.splitlines()[:3], ["different: runs[0].drift: -0.0 -> 0.0",
-                                                     "different: runs[0].error: 1.25e-07 -> 1.2500000000000002e-07",
+        self.assertEqual(r.stdout.splitlines()[:3], ["different: runs[0].drift.energy: -0.0 -> 0.0",
+                                                     "different: runs[0].error.contact: 1.25e-07 -> "
+                                                     "1.2500000000000002e-07",
                                                      "different: runs[1].steps: 100 -> 100.0"])
         self.assertTrue(r.stdout.endswith("(2 runs): 3 values different\n"), r.stdout)
 

@@ -31,13 +31,16 @@ struct DiscreteGradientStep {
     constexpr int n = kFlatSize;
     flat_jacobian(problem, y, J, &f);
     ++cost.jacobian_evals;
+    cost.jacobian_columns += n;
     M.setIdentity();
     M -= (0.5 * h) * J;
     lu.compute(M);
+    cost.note_decomposition(n);
     const RollingBall& ball = problem.model();
     // H(y0) by an evaluation of its own each step: the last iterate's H(y1)
     // is one Newton increment off the step's end
     const double H0 = flat_energy(ball, y);
+    ++cost.model_passes;
     FlatState F_m, g_m;
     X.setZero();
     scale = (1.0 + y.array().abs()).inverse().matrix();
@@ -53,6 +56,7 @@ struct DiscreteGradientStep {
       ++cost.rhs_evals;
       flat_energy(ball, y_m, &g_m);
       const double H1 = flat_energy(ball, y + dy);
+      cost.model_passes += 2;  // H and its gradient at the midpoint, H at the end
       // Gonzalez: dg = g + (H1 - H0 - g . dy) dy / |dy|^2, so that dg . dy = H1 - H0
       FlatState dg = g_m;
       const double dy2 = dy.squaredNorm();

@@ -118,6 +118,7 @@ int rhs_callback(double t, const double y[], double dydt[], void* params) {
 int jacobian_callback(double /*t*/, const double y[], double* dfdy, double dfdt[], void* params) {
   auto& s = *static_cast<CallbackState*>(params);
   ++s.jacobian_evals;
+  if (s.cost) s.cost->jacobian_columns += kFlatSize;  // its rhs-equivalents (integrators/integrator.hpp)
   FlatJacobian J;
   try {
     flat_jacobian(*s.problem, Eigen::Map<const FlatState>(y), J);

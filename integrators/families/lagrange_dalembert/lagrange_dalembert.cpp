@@ -125,7 +125,10 @@ struct LagrangeDalembertStep {
       res0[i] = ra[i].value();
     }
     ++cost.jacobian_evals;
+    cost.jacobian_columns += kUnknowns;  // the AD pass carries five directions
+    ++cost.model_passes;                 // the start's geometry
     lu.compute(M);
+    cost.note_decomposition(kUnknowns);
     scale.head<3>().setOnes();  // phi in radians
     scale.tail<2>() = (1.0 + alpha0.array().abs()).inverse().matrix();
     auto equations = [&](const Eigen::VectorXd& x, Eigen::VectorXd& out, bool first) {
@@ -134,12 +137,14 @@ struct LagrangeDalembertStep {
         return;
       }
       residual<double>(x.data(), out.data(), R0, v0, alpha0, c0, h);
+      ++cost.model_passes;  // the landscape's geometry at alpha1
     };
     newton_solve(lu, scale, X, res, dX, equations, t, h, cost);
 
     const Vec3 phi = X.head<3>();
     const Vec2 alpha1 = alpha0 + X.tail<2>();
     const Contact<double> c1 = contact_at(ball, alpha1[0], alpha1[1]);
+    ++cost.model_passes;
     const Vec3 dC = c1.C - c0.C, N_sum = c0.N + c1.N;
     const Vec3 v1 =
         v0 + (m * r / h) * (c1.N - c0.N).cross(dC) + (0.5 * h * m * r) * Vec3(-g0 * N_sum[1], g0 * N_sum[0], 0.0);

@@ -50,10 +50,12 @@ struct GaussStep {
     constexpr int n = kFlatSize;
     flat_jacobian(problem, y, J, &f);
     ++cost.jacobian_evals;
+    cost.jacobian_columns += n;
     M.setIdentity();
     for (int i = 0; i < s; ++i)
       for (int j = 0; j < s; ++j) M.block<n, n>(i * n, j * n) -= (h * tableau.a[i * s + j]) * J;
     lu.compute(M);
+    cost.note_decomposition(s * n);
     X.setZero();
     for (int i = 0; i < s; ++i) scale.segment<n>(i * n) = (1.0 + y.array().abs()).inverse().matrix();
     auto residual = [&](const Eigen::VectorXd& Z, Eigen::VectorXd& res, bool first) {

@@ -51,8 +51,12 @@ void LieMidpointStep::operator()(const FlatState& y, FlatState& next, double t, 
   const ZState z = z_of(y);
   flat_jacobian(problem, y, J, &f);
   ++cost.jacobian_evals;
+  cost.jacobian_columns += kFlatSize;
   M = Eigen::MatrixXd::Identity(kLieSize, kLieSize) - (0.5 * h) * lie_jacobian(J, f, Rn);
+  // lie_jacobian: one product of the 14x14 J with a vector per unknown
+  cost.linear_algebra_flops += 2.0 * kLieSize * kFlatSize * kFlatSize;
   lu.compute(M);
+  cost.note_decomposition(kLieSize);
   X.setZero();
   scale.head<3>().setOnes();  // U in radians
   scale.tail<kZSize>() = (1.0 + z.array().abs()).inverse().matrix();
