@@ -261,8 +261,8 @@ TEST(MergeShards, TwoScenesOfOneNameAreRefused) {
   const json reference = {{"scene", "plane"},   {"error", 1e-12},        {"omega_scale", 1.0}, {"t_end", 1.0},
                           {"inertia", nullptr}, {"r_feeds_back", false}, {"kind", "exact"},    {"method", "exact"}};
   json a = empty_shard(0, 2), b = empty_shard(1, 2);
-  a["references"] = {reference};
-  b["references"] = {reference};
+  a["references"] = json::array({reference});
+  b["references"] = json::array({reference});
   EXPECT_EQ(merge_error({a, b}, {"a.json", "b.json"}), "(merged)");
   b["references"][0]["t_end"] = 2.0;
   EXPECT_EQ(merge_error({a, b}, {"a.json", "b.json"}),

@@ -89,12 +89,31 @@ TEST(OutputSignals, ASignalRemovesTheTemporaryAndEndsTheProcessByIt) {
 // 0-byte temporary. Every signal that ends a process by default and can be
 // caught now removes it, the faults' and the real-time ones included, and
 // the process still ends by that signal.
+// Under AddressSanitizer the faults (BUS, FPE, ILL, SEGV) are the
+// sanitizer's own: rollbench leaves a handler it finds alone, so those four
+// are checked in the plain build only.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitizerOwnsFaults = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kSanitizerOwnsFaults = true;
+#else
+constexpr bool kSanitizerOwnsFaults = false;
+#endif
+#else
+constexpr bool kSanitizerOwnsFaults = false;
+#endif
+
 TEST(OutputSignals, EveryTerminatingSignalThatCanBeCaughtRemovesTheTemporary) {
   const LongScene long_scene;
   for (const int signal_number :
        {SIGQUIT,   SIGUSR1, SIGUSR2, SIGALRM, SIGPIPE, SIGXCPU, SIGXFSZ, SIGVTALRM, SIGPROF,  SIGPOLL,      SIGPWR,
-        SIGSTKFLT, SIGSYS,  SIGTRAP, SIGABRT, SIGBUS,  SIGFPE,  SIGILL,  SIGSEGV,   SIGRTMIN, SIGRTMIN + 1, SIGRTMAX})
+        SIGSTKFLT, SIGSYS,  SIGTRAP, SIGABRT, SIGBUS,  SIGFPE,  SIGILL,  SIGSEGV,   SIGRTMIN, SIGRTMIN + 1, SIGRTMAX}) {
+    const bool fault =
+        signal_number == SIGBUS || signal_number == SIGFPE || signal_number == SIGILL || signal_number == SIGSEGV;
+    if (kSanitizerOwnsFaults && fault) continue;
     signal_leaves_no_temporary(long_scene.folder, long_scene.scene, signal_number);
+  }
 }
 
 }  // namespace
