@@ -22,6 +22,18 @@ def _colour_ticklabels(ax, names, palette):
         label.set_color(st.shade(palette.colour(name), -0.2))
 
 
+def _finish_step_axes(ax, names, palette, none_x, none_label, xlabel):
+    """The stability panels' common axes: methods down, log steps across, "none" left of every step."""
+    ax.plot([], [], marker="x", color="black", linestyle="none", label=none_label)
+    ax.axvline(none_x * 1.5, color="#999999", linewidth=0.7, linestyle=":")
+    ax.set_xscale("log")
+    ax.set_yticks(range(len(names)), names, fontsize=8)
+    _colour_ticklabels(ax, names, palette)
+    ax.set_ylim(len(names) - 0.5, -0.5)
+    ax.set_xlabel(xlabel)
+    ax.grid(True, axis="x", which="major", alpha=0.3)
+
+
 def _largest_stable_panel(ax, entries, palette):
     names = rp.integrators(entries)
     scenes = rp.unique(e["scene"] for e in entries)
@@ -42,14 +54,8 @@ def _largest_stable_panel(ax, entries, palette):
             else:
                 ax.plot([none_x], [y], marker="x", color=colour, markersize=7, linestyle="none")
         ax.plot([], [], marker=marker, color="black", linestyle="none", label=scene)
-    ax.plot([], [], marker="x", color="black", linestyle="none", label="no tested step passes")
-    ax.axvline(none_x * 1.5, color="#999999", linewidth=0.7, linestyle=":")
-    ax.set_xscale("log")
-    ax.set_yticks(range(len(names)), names, fontsize=8)
-    _colour_ticklabels(ax, names, palette)
-    ax.set_ylim(len(names) - 0.5, -0.5)
-    ax.set_xlabel("largest stable step h (s): it and every smaller tested step pass")
-    ax.grid(True, axis="x", which="major", alpha=0.3)
+    _finish_step_axes(ax, names, palette, none_x, "no tested step passes",
+                      "largest stable step h (s): it and every smaller tested step pass")
     bounds = entries[0].get("thresholds") or {}
     horizon = rp.num(entries[0].get("horizon"))
     parts = [f"to t = {horizon:g} s" if math.isfinite(horizon) else "",
@@ -111,14 +117,7 @@ def _limits_panel(ax, entries, palette):
         ax.plot([], [], marker="o", color="black", fillstyle=HORIZON_FILLS[min(k, len(HORIZON_FILLS) - 1)],
                 linestyle="none", label=f"h*({t:g} s)")
     ax.plot([], [], marker="|", color=BLOW_UP_COLOUR, markeredgewidth=2, linestyle="none", label="blow-up step")
-    ax.plot([], [], marker="x", color="black", linestyle="none", label="no step keeps the bounds")
-    ax.axvline(none_x * 1.5, color="#999999", linewidth=0.7, linestyle=":")
-    ax.set_xscale("log")
-    ax.set_yticks(range(len(names)), names, fontsize=8)
-    _colour_ticklabels(ax, names, palette)
-    ax.set_ylim(len(names) - 0.5, -0.5)
-    ax.set_xlabel("step h (s)")
-    ax.grid(True, axis="x", which="major", alpha=0.3)
+    _finish_step_axes(ax, names, palette, none_x, "no step keeps the bounds", "step h (s)")
     bounds = entries[0].get("thresholds") or {}
     ax.set_title("drift-limited step h*(T) per horizon (fill)\nand blow-up step (bar) per method and scene\n"
                  f"(h*: energy error ≤ {rp.num(bounds.get('energy')):g} of the scale, "
